@@ -1,0 +1,184 @@
+#ifndef fidus_contact_constraint_system_h
+#define fidus_contact_constraint_system_h
+
+#include <fidus/contact/contact_types.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace Fidus::Contact
+{
+  /**
+   * The linearised constraints of one projection and the solvers of its dual
+   * problem (numerics section 3).
+   *
+   * Bodies are the particles 0..N-1 followed by the walls N..N+W-1; a wall is
+   * a body with zero inverse weight (no degrees of freedom) and a prescribed
+   * tangential velocity, so that particle-particle and particle-wall rows are
+   * the same code. Row k couples bodies a_k and b_k with unit normal e_k
+   * pointing from a_k to b_k and reads, in velocity units,
+   *
+   *   c_k(u) = D_k / dt + (u_b - u_a) . e_k  >= 0   (unglued),   = 0 (glued).
+   *
+   * With G the matrix of the rows, the KKT conditions of
+   * min 1/2 |v - u*|_W^2 on K are u = u* + W^{-1} G^T lambda, lambda_k >= 0
+   * and lambda_k c_k = 0 on unglued rows, c_k = 0 on glued rows. Eliminating u
+   * gives the dual problem: minimise 1/2 lambda^T A lambda + b^T lambda,
+   * A = G W^{-1} G^T, b = D/dt + G u*, subject to lambda_k >= 0 on unglued
+   * rows; its gradient is c(lambda). All three solvers work matrix-free on
+   * the rows: A is never formed.
+   */
+  class ConstraintSystem
+  {
+  public:
+    /// Outcome of a solve.
+    struct Result
+    {
+      unsigned int iterations = 0;
+      double       residual   = 0.; ///< KKT residual, length units
+      bool         converged  = false;
+    };
+
+    /// Remove all rows.
+    void
+    clear();
+
+    /// Reserve memory for @p n rows.
+    void
+    reserve(std::size_t n);
+
+    /**
+     * Add row (a, b): gap @p gap, unit normal @p e from a to b, @p glued for
+     * an equality row, initial multiplier @p lambda (warm start; it is
+     * clipped to >= 0 on unglued rows) and glue variable @p gamma.
+     */
+    void
+    add_row(std::uint32_t a,
+            std::uint32_t b,
+            const Vec3   &e,
+            double        gap,
+            bool          glued,
+            double        lambda,
+            double        gamma);
+
+    /**
+     * Solve the dual problem with @p solver, starting from the multipliers
+     * stored in the rows, and write the corrected velocities of all bodies
+     * into @p u (walls keep u*). @p inv_w holds 1/w per body (0 for walls).
+     * Stops when residual() <= @p tolerance or after @p max_iterations
+     * iterations (sweeps for Gauss-Seidel); never throws on non-convergence.
+     */
+    Result
+    solve(DualSolver                 solver,
+          const std::vector<Vec3>   &u_star,
+          const std::vector<double> &inv_w,
+          double                     dt,
+          double                     tolerance,
+          unsigned int               max_iterations,
+          std::vector<Vec3>         &u);
+
+    /**
+     * KKT residual of velocities @p u with the stored multipliers, in length
+     * units (times dt): the maximum over rows of dt |c_k| on glued rows and
+     * dt |min(A_kk lambda_k, c_k)| on unglued rows. It is zero exactly when u
+     * is feasible and complementarity holds, so it bounds both the constraint
+     * violation and the slack of rows that still push.
+     */
+    double
+    residual(const std::vector<Vec3> &u, double dt) const;
+
+    /// Number of rows.
+    std::size_t
+    size() const
+    {
+      return gap_.size();
+    }
+
+    /// First body of row k (coefficient -e).
+    std::uint32_t
+    first(const std::size_t k) const
+    {
+      return a_[k];
+    }
+
+    /// Second body of row k (coefficient +e).
+    std::uint32_t
+    second(const std::size_t k) const
+    {
+      return b_[k];
+    }
+
+    /// Unit normal of row k, from first to second.
+    const Vec3 &
+    normal(const std::size_t k) const
+    {
+      return e_[k];
+    }
+
+    /// Gap D_k at the start of the step.
+    double
+    gap(const std::size_t k) const
+    {
+      return gap_[k];
+    }
+
+    /// Whether row k is an equality (glued pair).
+    bool
+    glued(const std::size_t k) const
+    {
+      return glued_[k] != 0;
+    }
+
+    /// Multiplier of row k.
+    double
+    lambda(const std::size_t k) const
+    {
+      return lambda_[k];
+    }
+
+    /// Glue variable of row k at the start of the step.
+    double
+    gamma(const std::size_t k) const
+    {
+      return gamma_[k];
+    }
+
+  private:
+    void
+    apply_multipliers(const std::vector<Vec3>   &u_star,
+                      const std::vector<double> &inv_w,
+                      std::vector<Vec3>         &u) const;
+
+    double
+    gershgorin_bound(const std::vector<double> &inv_w,
+                     std::size_t                n_bodies) const;
+
+    Result
+    solve_projected_gradient(const std::vector<Vec3>   &u_star,
+                             const std::vector<double> &inv_w,
+                             double                     dt,
+                             double                     tolerance,
+                             unsigned int               max_iterations,
+                             bool                       accelerated,
+                             std::vector<Vec3>         &u);
+
+    Result
+    solve_gauss_seidel(const std::vector<Vec3>   &u_star,
+                       const std::vector<double> &inv_w,
+                       double                     dt,
+                       double                     tolerance,
+                       unsigned int               max_iterations,
+                       std::vector<Vec3>         &u);
+
+    std::vector<std::uint32_t> a_, b_;
+    std::vector<Vec3>          e_;
+    std::vector<double>        gap_;
+    std::vector<char>          glued_;
+    std::vector<double>        lambda_;
+    std::vector<double>        gamma_;
+    std::vector<double>        rhs_;  ///< D_k / dt
+    std::vector<double>        diag_; ///< A_kk = 1/w_a + 1/w_b
+  };
+} // namespace Fidus::Contact
+
+#endif

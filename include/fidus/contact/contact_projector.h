@@ -1,0 +1,174 @@
+#ifndef fidus_contact_contact_projector_h
+#define fidus_contact_contact_projector_h
+
+#include <fidus/contact/constraint_system.h>
+#include <fidus/contact/contact_error.h>
+#include <fidus/contact/contact_types.h>
+#include <fidus/contact/glue_state.h>
+#include <fidus/contact/pair_search.h>
+
+#include <limits>
+#include <vector>
+
+namespace Fidus::Contact
+{
+  /**
+   * The contact corrector of numerics section 3: projects the predicted
+   * translational velocities u* of the particles onto the admissible set K of
+   * the chosen model (none, inelastic, gluey), with walls, and carries the
+   * glue state of every pair from one step to the next.
+   *
+   * Each call of project() does: validate the input; find the pairs (and
+   * particle-wall pairs) within the alert distance with a cell list, plus
+   * every glued pair whatever its distance; build the linearised rows
+   * D + dt G v >= 0 (= 0 if glued); solve the dual problem warm-started from
+   * the previous step's multipliers; update the glue gamma <- min(0, gamma -
+   * dt lambda) (gluey). The projector never moves the particles.
+   */
+  class ContactProjector
+  {
+  public:
+    /// Store the settings; throws ContactError if they are inconsistent.
+    explicit ContactProjector(const Settings &settings);
+
+    /**
+     * Set the walls (faces of the box with zero normal velocity). Each
+     * particle-wall pair gets its own glue variable. Throws ContactError for
+     * an axis outside the dimension, a side other than +-1 or a wall velocity
+     * with a normal component (in- or outflow: not a wall). Changing the
+     * walls forgets the glue of particle-wall pairs.
+     */
+    void
+    set_walls(const std::vector<Wall> &walls);
+
+    /**
+     * Weights w_i of the norm |v - u*|_W (default: all 1, the paper's choice).
+     * An empty vector restores the default. Weights must be positive.
+     */
+    void
+    set_weights(const std::vector<double> &weights);
+
+    /**
+     * Project predicted translational velocities onto K (numerics section 3)
+     * for one step of size @p dt, then (gluey) update the glue state
+     * gamma <- min(0, gamma - dt lambda) with snapping to zero above
+     * -glue_snap.
+     *
+     * @p positions, @p radii and @p predicted have one entry per particle; in
+     * 2D the z components are ignored (corrected z = predicted z).
+     * @p corrected is resized and overwritten.
+     *
+     * Throws ContactError on: dt <= 0 or NaN, a non-finite predicted
+     * velocity or position (the message names the particle), a radius <= 0,
+     * an initial overlap beyond the overlap tolerance (the message names the
+     * pair i, j or particle and wall, and the overlap), size mismatch. The
+     * overlap check is skipped for model none, where overlaps are expected.
+     *
+     * Non-convergence of the dual solver does not throw: the statistics say
+     * converged = false and give the residual; the caller reports it.
+     *
+     * Alert distance: a pair enters K if its gap is below
+     * d_a = max(settings.alert_distance, alert_factor dt max|u*|),
+     * alert_factor >= 2. Two particles that both move at most U close their
+     * gap by at most 2 dt U in one step, so 2 dt max|u| is enough *for the
+     * corrected* velocities u. But the correction can make a particle faster
+     * than any predicted one (a particle squeezed between two converging
+     * neighbours is ejected at a speed that grows like 1/tan of the contact
+     * angle; a glued cluster drags its members), so no fixed multiple of
+     * max|u*| is safe in all cases. The default factor 3 covers the common
+     * case (chains, clusters averaging velocities never exceed max|u*|, and
+     * ejection gains up to 1.5 are covered); the guarantee comes from an a
+     * posteriori check: after the solve, if 2 dt max|u| > d_a the search is
+     * redone with d_a = alert_factor dt max|u| (warm started) until it
+     * holds. Then every pair left out has D > d_a >= dt |u_j - u_i|, so by
+     * convexity of the gap it cannot overlap after the step.
+     */
+    ProjectionStatistics
+    project(const std::vector<Vec3>   &positions,
+            const std::vector<double> &radii,
+            const std::vector<Vec3>   &predicted,
+            double                     dt,
+            std::vector<Vec3>         &corrected);
+
+    /// Number of glued pairs (particle-particle and particle-wall).
+    unsigned int
+    n_glued() const;
+
+    /// Number of glued contacts that involve each particle (for output).
+    std::vector<unsigned int>
+    glued_count_per_particle(std::size_t n_particles) const;
+
+    /// Forget the glue state and the warm start.
+    void
+    reset_glue();
+
+    /// The glue state after the last projection (pair identity, gamma,
+    /// last multiplier).
+    const GlueState &
+    glue_state() const
+    {
+      return glue;
+    }
+
+    /**
+     * The rows of the last projection with their multipliers (bodies
+     * 0..N-1 are particles, N + w is wall w), for checks of the KKT
+     * conditions and diagnostics.
+     */
+    const ConstraintSystem &
+    constraints() const
+    {
+      return system;
+    }
+
+    /// The settings in use.
+    const Settings &
+    get_settings() const
+    {
+      return settings;
+    }
+
+    /**
+     * Smallest gap D of a configuration: over all particle pairs with
+     * gap < @p search_distance (found with the O(N) cell list) and over all
+     * particle-wall pairs. Returns +infinity if there are no walls and no
+     * pair closer than @p search_distance. A negative value is an overlap.
+     * @p dimension is 2 or 3 (2D ignores z).
+     */
+    static double
+    minimum_gap(const std::vector<Vec3>   &positions,
+                const std::vector<double> &radii,
+                const std::vector<Wall>   &walls,
+                unsigned int               dimension,
+                double                     search_distance);
+
+  private:
+    void
+    validate(const std::vector<Vec3>   &positions,
+             const std::vector<double> &radii,
+             const std::vector<Vec3>   &predicted,
+             double                     dt) const;
+
+    /// Build the rows for alert distance @p d_a; returns the smallest gap.
+    double
+    assemble(const std::vector<Vec3>   &positions,
+             const std::vector<double> &radii,
+             double                     d_a);
+
+    Settings          settings;
+    std::vector<Wall> walls;
+    std::vector<double> weights;
+
+    PairSearch       search;
+    GlueState        glue;
+    ConstraintSystem system;
+
+    /// Work arrays kept between calls.
+    std::vector<PairSearch::Pair> pairs;
+    std::vector<char>             glue_seen;
+    std::vector<Vec3>             u_star, u;
+    std::vector<double>           inv_w;
+  };
+} // namespace Fidus::Contact
+
+#endif

@@ -1,0 +1,137 @@
+#ifndef fidus_core_parameters_h
+#define fidus_core_parameters_h
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace Fidus
+{
+  /// Outer boundary condition of the box (numerics section 1).
+  enum class BoundaryCondition
+  {
+    linear_shear,
+    sliding_walls,
+    cavity,
+    exact_rigid_inclusion
+  };
+
+  /// How particle velocities are obtained (numerics section 6).
+  enum class FluidModel
+  {
+    fictitious_domain,
+    undisturbed_shear
+  };
+
+  /// Contact model (numerics section 3).
+  enum class ContactModel
+  {
+    none,
+    inelastic,
+    gluey
+  };
+
+  /// Screen verbosity.
+  enum class Verbosity
+  {
+    quiet,
+    normal,
+    verbose
+  };
+
+  /**
+   * All run-time parameters of fidus, with the names of interface.md.
+   *
+   * declare() registers every entry with a documentation string (units,
+   * range) and a pattern; parse() reads them back and checks the scene as a
+   * whole (particles inside the box, no overlap, ...). Every problem is thrown
+   * as an InputError that names the entry, the value and what is allowed.
+   * The struct is dimension independent: vectors always have three components
+   * and the third is zero in 2D.
+   */
+  struct Parameters
+  {
+    /// Register all entries in @p prm.
+    static void
+    declare(dealii::ParameterHandler &prm);
+
+    /// Read all entries from @p prm and check the scene. @p input_name is the
+    /// name of the parameter file, used to resolve a relative positions file.
+    void
+    parse(dealii::ParameterHandler &prm, const std::string &input_name);
+
+    /// Check the scene as a whole (called by parse()).
+    void
+    check_scene() const;
+
+    /// Number of particles.
+    unsigned int
+    n_particles() const
+    {
+      return positions.size();
+    }
+
+    unsigned int dimension        = 2;
+    std::string  output_directory = "output";
+
+    // Domain
+    std::array<double, 3> lower_left         = {{0., 0., 0.}};
+    std::array<double, 3> upper_right        = {{1., 1., 1.}};
+    BoundaryCondition     boundary_condition = BoundaryCondition::linear_shear;
+    std::string           shear_rate         = "1";
+
+    // Fluid
+    FluidModel   fluid_model           = FluidModel::fictitious_domain;
+    double       viscosity             = 1.;
+    double       penalty_factor        = 1e3;
+    unsigned int velocity_degree       = 2;
+    double       rigidity_tolerance    = 1e-6;
+    unsigned int max_uzawa_iterations  = 50;
+    bool         reuse_multiplier      = true;
+    double       linear_tolerance      = 1e-8;
+    unsigned int max_cheap_iterations  = 200;
+    unsigned int max_linear_iterations = 1000;
+    double       amg_aggregation_threshold = 0.02;
+    unsigned int amg_smoother_sweeps       = 2;
+
+    // Particles
+    std::vector<std::array<double, 3>> positions;
+    std::vector<double>                radii;
+    std::string                        positions_file;
+
+    // Contact
+    ContactModel contact_model     = ContactModel::gluey;
+    bool         walls             = true;
+    double       contact_tolerance = 1e-9;
+    std::string  dual_solver       = "projected Gauss-Seidel";
+    double       alert_distance    = 0.1;
+
+    // Time stepping
+    double end_time           = 20.;
+    double time_step          = 0.01;
+    bool   adaptive_time_step = false;
+    double cfl_number         = 0.5;
+    double maximum_time_step  = 0.05;
+
+    // Mesh refinement
+    unsigned int initial_global_refinement = 3;
+    unsigned int minimum_level             = 3;
+    unsigned int maximum_level             = 8;
+    double       interface_band            = 2.;
+    double       gap_refinement_distance   = 0.5;
+    double       remesh_fraction           = 0.5;
+
+    // Output
+    unsigned int field_output_interval    = 0;
+    unsigned int particle_output_interval = 0;
+    unsigned int progress_interval        = 1;
+    Verbosity    verbosity                = Verbosity::normal;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,202 @@
+#ifndef fidus_fluid_stokes_solver_h
+#define fidus_fluid_stokes_solver_h
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+
+#include <fidus/particles/solid_indicator.h>
+
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The fluid predictor of fidus (numerics section 1): Stokes flow on the
+   * whole box, the solid given the viscosity r * eta_f, and a Lagrange
+   * multiplier lambda that enforces rigidity (epsilon(u) = 0 on the solid),
+   * found by the augmented-Lagrangian Uzawa loop
+   *
+   *   (2 eta e(u^k), e(v)) - (p^k, div v) = -(e(lambda^k), e(v))_solid,
+   *   (q, div u^k) = 0,
+   *   lambda^{k+1} = lambda^k + rho u^k,   rho = 2 (eta_s - eta_f).
+   *
+   * The penalised viscosity is the augmentation, so the matrix and its
+   * preconditioner are built once per solve and every Uzawa iteration is one
+   * FGMRES solve with a new right-hand side (warm-started from the previous
+   * iterate). Taylor-Hood Q(k)/Q(k-1) on a p4est mesh, Trilinos linear
+   * algebra, MPI parallel.
+   */
+  template <int dim>
+  class StokesSolver
+  {
+  public:
+    /// Solver settings (see Parameters for their meaning).
+    struct Settings
+    {
+      unsigned int degree                = 2;
+      double       viscosity             = 1.;
+      double       penalty_factor        = 1e3;
+      double       rigidity_tolerance    = 1e-6;
+      unsigned int max_uzawa_iterations  = 50;
+      double       linear_tolerance      = 1e-8;
+      unsigned int max_cheap_iterations  = 200;
+      unsigned int max_linear_iterations = 1000;
+      double       amg_aggregation_threshold = 0.02;
+      unsigned int amg_smoother_sweeps       = 2;
+      bool         reuse_multiplier          = true;
+    };
+
+    /// What one solve() did.
+    struct Statistics
+    {
+      unsigned int uzawa_iterations  = 0;
+      unsigned int linear_iterations = 0; ///< outer FGMRES, summed
+      unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
+      unsigned int expensive_solves  = 0;
+      double       rigidity_residual = 0.;
+      bool         uzawa_converged   = true;
+      double       assemble_seconds  = 0.;
+      double       setup_seconds     = 0.; ///< AMG and Jacobi set-up
+      double       solve_seconds     = 0.;
+    };
+
+    /// Error norms against an exact solution.
+    struct Errors
+    {
+      double u_l2 = 0., u_h1 = 0., p_l2 = 0.;
+    };
+
+    /// Work on @p triangulation (owned by the caller).
+    StokesSolver(parallel::distributed::Triangulation<dim> &triangulation,
+                 const Settings                            &settings);
+    ~StokesSolver();
+
+    /**
+     * Distribute DoFs and build sparsity patterns for the current mesh.
+     * @p periodic_directions: axes whose faces (boundary ids 2k, 2k+1) are
+     * periodic; @p dirichlet_ids: boundary ids with imposed velocity.
+     */
+    void
+    setup_dofs(const std::vector<unsigned int>   &periodic_directions,
+               const std::set<types::boundary_id> &dirichlet_ids);
+
+    /**
+     * Solve for the given solid region and boundary velocity (a function of
+     * dim+1 components). Optional: a body force (dim+1 components) and a
+     * variable fluid viscosity (scalar) used by verification tests.
+     */
+    Statistics
+    solve(const SolidIndicator<dim> &solid,
+          const Function<dim>       &boundary_velocity,
+          const Function<dim>       *body_force      = nullptr,
+          const Function<dim>       *fluid_viscosity = nullptr);
+
+    /**
+     * Errors of the current solution against @p exact (dim+1 components):
+     * L2 and H1-seminorm of u and L2 of p (both pressures with zero mean),
+     * integrated on the fluid part only when @p fluid_only is set.
+     */
+    Errors
+    compute_errors(const Function<dim>       &exact,
+                   const SolidIndicator<dim> &solid,
+                   const bool                 fluid_only) const;
+
+    /// The DoF handler (velocity components first, then pressure).
+    const DoFHandler<dim> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+
+    /// The finite element.
+    const FESystem<dim> &
+    get_fe() const
+    {
+      return fe;
+    }
+
+    /// The solution with ghost entries (block 0: u, block 1: p).
+    const TrilinosWrappers::MPI::BlockVector &
+    get_solution() const
+    {
+      return solution;
+    }
+
+    /// The rigidity multiplier with ghost entries (block 0).
+    const TrilinosWrappers::MPI::BlockVector &
+    get_multiplier() const
+    {
+      return multiplier;
+    }
+
+    /// Quadrature used for assembly, the indicator and particle integrals.
+    const QGauss<dim> &
+    get_quadrature() const
+    {
+      return quadrature;
+    }
+
+    /// Total number of DoFs.
+    types::global_dof_index
+    n_dofs() const
+    {
+      return dof_handler.n_dofs();
+    }
+
+    /// Invalidate the multiplier warm start (the solid moved).
+    void
+    reset_multiplier();
+
+  private:
+    void
+    assemble_system(const SolidIndicator<dim> &solid,
+                    const Function<dim>       *body_force,
+                    const Function<dim>       *fluid_viscosity);
+    void
+    assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
+    double
+    rigidity_residual(const SolidIndicator<dim> &solid) const;
+    unsigned int
+    solve_linear(Statistics &stats);
+    void
+    make_pressure_rhs_consistent();
+
+    MPI_Comm                                   mpi_communicator;
+    parallel::distributed::Triangulation<dim> &triangulation;
+    const Settings                             settings;
+    FESystem<dim>                              fe;
+    DoFHandler<dim>                            dof_handler;
+    QGauss<dim>                                quadrature;
+
+    std::vector<unsigned int>    periodic_directions;
+    std::set<types::boundary_id> dirichlet_ids;
+    std::vector<IndexSet>        owned_partitioning, relevant_partitioning;
+    IndexSet                     locally_relevant_dofs;
+    AffineConstraints<double>    constraints;
+
+    TrilinosWrappers::BlockSparseMatrix system_matrix;
+    TrilinosWrappers::BlockSparseMatrix preconditioner_matrix;
+    TrilinosWrappers::MPI::BlockVector  base_rhs, rhs;
+    TrilinosWrappers::MPI::BlockVector  distributed_solution;
+    TrilinosWrappers::MPI::BlockVector  solution;
+    TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
+    TrilinosWrappers::MPI::BlockVector  solid_mask;
+    bool                                multiplier_valid = false;
+
+    class Preconditioners;
+    std::unique_ptr<Preconditioners> preconditioners;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,36 @@
+#ifndef fidus_io_csv_writer_h
+#define fidus_io_csv_writer_h
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace Fidus
+{
+  /**
+   * A CSV file with a header line, written by one MPI rank (the caller
+   * decides which: the others pass active = false and write nothing).
+   * Numbers are written with 15 significant digits, so that the files can be
+   * compared and post-processed without loss (interface.md asks for >= 12).
+   * Every row is flushed so that a run that stops keeps all rows so far.
+   */
+  class CsvWriter
+  {
+  public:
+    /// Create @p filename with the given column names (if @p active).
+    CsvWriter(const std::string              &filename,
+              const std::vector<std::string> &columns,
+              const bool                      active);
+
+    /// Append one row; the number of values must match the header.
+    void
+    write_row(const std::vector<double> &values);
+
+  private:
+    std::ofstream out;
+    std::size_t   n_columns;
+    bool          active;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,42 @@
+#ifndef fidus_io_field_output_h
+#define fidus_io_field_output_h
+
+#include <fidus/fluid/stokes_solver.h>
+#include <fidus/particles/solid_indicator.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace Fidus
+{
+  /**
+   * Writes the fluid fields of one time step as solution-NNNNN.pvtu (one
+   * .vtu per rank) and keeps solution.pvd up to date: velocity, pressure,
+   * the rigidity multiplier, and per cell the solid fraction (the discrete
+   * characteristic function, i.e. the viscosity indicator), the refinement
+   * level and the owning rank.
+   */
+  template <int dim>
+  class FieldOutput
+  {
+  public:
+    /// Files go to @p directory.
+    explicit FieldOutput(const std::string &directory)
+      : directory(directory)
+    {}
+
+    /// Write the fields of @p solver for output number @p step at @p time.
+    void
+    write(const StokesSolver<dim>   &solver,
+          const SolidIndicator<dim> &solid,
+          const unsigned int         step,
+          const double               time);
+
+  private:
+    std::string                                  directory;
+    std::vector<std::pair<double, std::string>> records;
+  };
+} // namespace Fidus
+
+#endif

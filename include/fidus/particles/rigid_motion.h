@@ -1,0 +1,43 @@
+#ifndef fidus_particles_rigid_motion_h
+#define fidus_particles_rigid_motion_h
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+
+#include <fidus/particles/solid_indicator.h>
+
+#include <array>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /// Rigid velocity of one particle.
+  struct RigidMotion
+  {
+    std::array<double, 3> velocity = {{0., 0., 0.}};
+    /// Angular velocity (2D: only the z component is used).
+    std::array<double, 3> omega  = {{0., 0., 0.}};
+    double                volume = 0.; ///< discrete |P_i|
+  };
+
+  /**
+   * L2 projection of the discrete velocity onto the rigid motions of each
+   * particle (numerics section 2), with the same indicator and quadrature as
+   * the penalty term:
+   *   U_i = (1/|P_i|) int_{P_i} u,   omega_i = J_i^{-1} int_{P_i} r x u,
+   *   J_i = int_{P_i} (|r|^2 I - r (x) r),   r = x - X_i.
+   * Integrals are summed over locally owned cells and reduced over MPI, so
+   * every rank gets every particle's motion.
+   */
+  template <int dim>
+  std::vector<RigidMotion>
+  compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
+                        const TrilinosWrappers::MPI::BlockVector &solution,
+                        const SolidIndicator<dim>                &solid,
+                        const Quadrature<dim>                    &quadrature);
+} // namespace Fidus
+
+#endif

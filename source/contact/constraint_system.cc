@@ -1,0 +1,326 @@
+#include <fidus/contact/constraint_system.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace Fidus::Contact
+{
+  namespace
+  {
+    /// (u_b - u_a) . e, the normal relative velocity of a row.
+    inline double
+    relative_normal_velocity(const std::vector<Vec3> &u,
+                             const std::uint32_t      a,
+                             const std::uint32_t      b,
+                             const Vec3              &e)
+    {
+      return (u[b][0] - u[a][0]) * e[0] + (u[b][1] - u[a][1]) * e[1] +
+             (u[b][2] - u[a][2]) * e[2];
+    }
+
+    /// u_b += s_b e, u_a -= s_a e: the action of W^{-1} G^T on one row.
+    inline void
+    scatter(std::vector<Vec3>        &u,
+            const std::uint32_t       a,
+            const std::uint32_t       b,
+            const Vec3               &e,
+            const double              delta,
+            const std::vector<double> &inv_w)
+    {
+      const double sa = inv_w[a] * delta, sb = inv_w[b] * delta;
+      for (unsigned d = 0; d < 3; ++d)
+        {
+          u[a][d] -= sa * e[d];
+          u[b][d] += sb * e[d];
+        }
+    }
+  } // namespace
+
+
+
+  void
+  ConstraintSystem::clear()
+  {
+    a_.clear();
+    b_.clear();
+    e_.clear();
+    gap_.clear();
+    glued_.clear();
+    lambda_.clear();
+    gamma_.clear();
+    rhs_.clear();
+    diag_.clear();
+  }
+
+
+
+  void
+  ConstraintSystem::reserve(const std::size_t n)
+  {
+    a_.reserve(n);
+    b_.reserve(n);
+    e_.reserve(n);
+    gap_.reserve(n);
+    glued_.reserve(n);
+    lambda_.reserve(n);
+    gamma_.reserve(n);
+  }
+
+
+
+  void
+  ConstraintSystem::add_row(const std::uint32_t a,
+                            const std::uint32_t b,
+                            const Vec3         &e,
+                            const double        gap,
+                            const bool          glued,
+                            const double        lambda,
+                            const double        gamma)
+  {
+    a_.push_back(a);
+    b_.push_back(b);
+    e_.push_back(e);
+    gap_.push_back(gap);
+    glued_.push_back(glued ? 1 : 0);
+    // A warm start must be admissible for the dual problem.
+    lambda_.push_back(glued ? lambda : std::max(lambda, 0.));
+    gamma_.push_back(gamma);
+  }
+
+
+
+  void
+  ConstraintSystem::apply_multipliers(const std::vector<Vec3>   &u_star,
+                                      const std::vector<double> &inv_w,
+                                      std::vector<Vec3>         &u) const
+  {
+    u = u_star;
+    for (std::size_t k = 0; k < size(); ++k)
+      if (lambda_[k] != 0.)
+        scatter(u, a_[k], b_[k], e_[k], lambda_[k], inv_w);
+  }
+
+
+
+  double
+  ConstraintSystem::residual(const std::vector<Vec3> &u, const double dt) const
+  {
+    double r = 0.;
+    for (std::size_t k = 0; k < size(); ++k)
+      {
+        const double c =
+          gap_[k] / dt + relative_normal_velocity(u, a_[k], b_[k], e_[k]);
+        double rk;
+        if (glued_[k])
+          rk = std::abs(c);
+        else if (diag_.size() == size())
+          rk = std::abs(std::min(diag_[k] * lambda_[k], c));
+        else
+          rk = lambda_[k] > 0. ? std::abs(c) : std::max(-c, 0.);
+        r = std::max(r, rk);
+      }
+    return r * dt;
+  }
+
+
+
+  double
+  ConstraintSystem::gershgorin_bound(const std::vector<double> &inv_w,
+                                     const std::size_t          n_bodies) const
+  {
+    // |A_kl| <= inv_w of the shared body (|e_k . e_l| <= 1), so a row sum of
+    // |A| is at most inv_w_a n_a + inv_w_b n_b with n_p the number of rows
+    // that touch body p: an upper bound of lambda_max(A), which makes any
+    // step rho < 2 / bound safe for projected gradient.
+    std::vector<unsigned int> count(n_bodies, 0);
+    for (std::size_t k = 0; k < size(); ++k)
+      {
+        ++count[a_[k]];
+        ++count[b_[k]];
+      }
+    double bound = 0.;
+    for (std::size_t k = 0; k < size(); ++k)
+      bound = std::max(bound,
+                       inv_w[a_[k]] * count[a_[k]] +
+                         inv_w[b_[k]] * count[b_[k]]);
+    return bound;
+  }
+
+
+
+  ConstraintSystem::Result
+  ConstraintSystem::solve(const DualSolver           solver,
+                          const std::vector<Vec3>   &u_star,
+                          const std::vector<double> &inv_w,
+                          const double               dt,
+                          const double               tolerance,
+                          const unsigned int         max_iterations,
+                          std::vector<Vec3>         &u)
+  {
+    rhs_.resize(size());
+    diag_.resize(size());
+    for (std::size_t k = 0; k < size(); ++k)
+      {
+        rhs_[k]  = gap_[k] / dt;
+        diag_[k] = inv_w[a_[k]] + inv_w[b_[k]];
+      }
+
+    Result result;
+    switch (solver)
+      {
+        case DualSolver::projected_gauss_seidel:
+          result = solve_gauss_seidel(
+            u_star, inv_w, dt, tolerance, max_iterations, u);
+          break;
+        case DualSolver::accelerated_projected_gradient:
+          result = solve_projected_gradient(
+            u_star, inv_w, dt, tolerance, max_iterations, true, u);
+          break;
+        case DualSolver::projected_gradient:
+        default:
+          result = solve_projected_gradient(
+            u_star, inv_w, dt, tolerance, max_iterations, false, u);
+          break;
+      }
+
+    // The iterations update u incrementally; recompute it from the
+    // multipliers so that u = u* + W^{-1} G^T lambda holds to round-off, and
+    // report the residual of exactly what is returned.
+    apply_multipliers(u_star, inv_w, u);
+    result.residual  = residual(u, dt);
+    result.converged = result.residual <= tolerance;
+    return result;
+  }
+
+
+
+  ConstraintSystem::Result
+  ConstraintSystem::solve_gauss_seidel(const std::vector<Vec3>   &u_star,
+                                       const std::vector<double> &inv_w,
+                                       const double               dt,
+                                       const double               tolerance,
+                                       const unsigned int max_iterations,
+                                       std::vector<Vec3> &u)
+  {
+    // Projected Gauss-Seidel on the dual: row by row, solve exactly for
+    // lambda_k with the others frozen (c_k = 0), project on lambda_k >= 0 for
+    // unglued rows, and update the two velocities it touches. One sweep costs
+    // as much as one matrix-vector product, and information travels along a
+    // chain of contacts within one sweep instead of one row per iteration.
+    // Sweeps alternate direction (symmetric Gauss-Seidel) so that a chain is
+    // resolved as fast from either end.
+    Result result;
+    apply_multipliers(u_star, inv_w, u);
+    result.residual = residual(u, dt);
+    const std::size_t m = size();
+    while (result.residual > tolerance && result.iterations < max_iterations)
+      {
+        const bool forward = (result.iterations % 2 == 0);
+        for (std::size_t i = 0; i < m; ++i)
+          {
+            const std::size_t   k = forward ? i : m - 1 - i;
+            const std::uint32_t a = a_[k], b = b_[k];
+            const Vec3         &e = e_[k];
+            const double c = rhs_[k] + relative_normal_velocity(u, a, b, e);
+            double       l = lambda_[k] - c / diag_[k];
+            if (!glued_[k] && l < 0.)
+              l = 0.;
+            const double delta = l - lambda_[k];
+            if (delta != 0.)
+              {
+                lambda_[k] = l;
+                scatter(u, a, b, e, delta, inv_w);
+              }
+          }
+        ++result.iterations;
+        result.residual = residual(u, dt);
+      }
+    result.converged = result.residual <= tolerance;
+    return result;
+  }
+
+
+
+  ConstraintSystem::Result
+  ConstraintSystem::solve_projected_gradient(
+    const std::vector<Vec3>   &u_star,
+    const std::vector<double> &inv_w,
+    const double               dt,
+    const double               tolerance,
+    const unsigned int         max_iterations,
+    const bool                 accelerated,
+    std::vector<Vec3>         &u)
+  {
+    // Projected gradient (Uzawa) on the dual: lambda <- P(lambda - rho c).
+    // The gradient c(lambda) = b + A lambda is evaluated matrix-free through
+    // u = u* + W^{-1} G^T lambda. Plain Uzawa uses rho = 1.9 / bound
+    // (< 2 / lambda_max(A), see gershgorin_bound()); the accelerated variant
+    // (Nesterov/FISTA) needs rho <= 1 / lambda_max and restarts its momentum
+    // whenever the step goes against the previous one (adaptive restart),
+    // which keeps it monotone-ish on the many nearly singular directions of
+    // a packing.
+    Result            result;
+    const std::size_t m        = size();
+    const std::size_t n_bodies = u_star.size();
+    const double      bound    = gershgorin_bound(inv_w, n_bodies);
+    if (m == 0 || bound <= 0.)
+      {
+        apply_multipliers(u_star, inv_w, u);
+        result.residual = residual(u, dt);
+        return result;
+      }
+    const double rho = (accelerated ? 1.0 : 1.9) / bound;
+
+    std::vector<double> lambda_prev(lambda_), y(m), c(m);
+    std::vector<Vec3>   u_prev, u_y(n_bodies);
+    apply_multipliers(u_star, inv_w, u);
+    u_prev   = u;
+    double t = 1.;
+
+    while (true)
+      {
+        result.residual = residual(u, dt);
+        if (result.residual <= tolerance || result.iterations >= max_iterations)
+          break;
+        ++result.iterations;
+
+        double beta = 0., t_next = 1.;
+        if (accelerated)
+          {
+            t_next = 0.5 * (1. + std::sqrt(1. + 4. * t * t));
+            beta   = (t - 1.) / t_next;
+          }
+        // Extrapolated point y and its velocities (linear in lambda).
+        for (std::size_t k = 0; k < m; ++k)
+          y[k] = lambda_[k] + beta * (lambda_[k] - lambda_prev[k]);
+        for (std::size_t p = 0; p < n_bodies; ++p)
+          for (unsigned d = 0; d < 3; ++d)
+            u_y[p][d] = u[p][d] + beta * (u[p][d] - u_prev[p][d]);
+
+        // Projected step from y; restart test (y - new).(new - lambda) > 0.
+        double restart = 0.;
+        for (std::size_t k = 0; k < m; ++k)
+          {
+            c[k] = rhs_[k] + relative_normal_velocity(u_y, a_[k], b_[k], e_[k]);
+            double l = y[k] - rho * c[k];
+            if (!glued_[k] && l < 0.)
+              l = 0.;
+            restart += (y[k] - l) * (l - lambda_[k]);
+            c[k] = l; // c now holds the new multipliers
+          }
+        lambda_prev.swap(lambda_);
+        u_prev.swap(u);
+        u = u_y;
+        for (std::size_t k = 0; k < m; ++k)
+          {
+            lambda_[k]         = c[k];
+            const double delta = c[k] - y[k];
+            if (delta != 0.)
+              scatter(u, a_[k], b_[k], e_[k], delta, inv_w);
+          }
+        t = (accelerated && restart <= 0.) ? t_next : 1.;
+      }
+    result.converged = result.residual <= tolerance;
+    return result;
+  }
+} // namespace Fidus::Contact

@@ -1,0 +1,496 @@
+#include <fidus/contact/contact_projector.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace Fidus::Contact
+{
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    double
+    seconds_since(const Clock::time_point start)
+    {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    std::string
+    format_vector(const Vec3 &v, const unsigned int dim)
+    {
+      std::ostringstream s;
+      s << '(' << v[0] << ", " << v[1];
+      if (dim == 3)
+        s << ", " << v[2];
+      s << ')';
+      return s.str();
+    }
+  } // namespace
+
+
+
+  ContactProjector::ContactProjector(const Settings &settings_)
+    : settings(settings_)
+    , search((settings_.dimension == 2 || settings_.dimension == 3) ?
+               settings_.dimension :
+               throw ContactError("dimension must be 2 or 3, got " +
+                                  std::to_string(settings_.dimension)),
+             settings_.pair_search)
+  {
+    if (!(settings.tolerance > 0.))
+      throw ContactError("tolerance must be positive");
+    if (!(settings.glue_snap >= 0.))
+      throw ContactError("glue_snap must be >= 0");
+    if (!(settings.alert_distance >= 0.))
+      throw ContactError("alert_distance must be >= 0");
+  }
+
+
+
+  void
+  ContactProjector::set_walls(const std::vector<Wall> &new_walls)
+  {
+    for (std::size_t w = 0; w < new_walls.size(); ++w)
+      {
+        const Wall &wall = new_walls[w];
+        if (wall.axis >= settings.dimension)
+          throw ContactError("wall " + std::to_string(w) + ": axis " +
+                             std::to_string(wall.axis) +
+                             " is not a coordinate direction in " +
+                             std::to_string(settings.dimension) + "D");
+        if (wall.side != 1 && wall.side != -1)
+          throw ContactError("wall " + std::to_string(w) +
+                             ": side must be +1 (lower wall) or -1 (upper "
+                             "wall), got " +
+                             std::to_string(wall.side));
+        if (!std::isfinite(wall.position))
+          throw ContactError("wall " + std::to_string(w) +
+                             ": position is not finite");
+        for (unsigned d = 0; d < settings.dimension; ++d)
+          if (!std::isfinite(wall.velocity[d]))
+            throw ContactError("wall " + std::to_string(w) +
+                               ": velocity is not finite");
+        if (wall.velocity[wall.axis] != 0.)
+          throw ContactError(
+            "wall " + std::to_string(w) + ": velocity " +
+            format_vector(wall.velocity, settings.dimension) +
+            " has a normal component: a face with in- or outflow is not a "
+            "wall");
+      }
+    const bool changed =
+      new_walls.size() != walls.size() ||
+      !std::equal(walls.begin(),
+                  walls.end(),
+                  new_walls.begin(),
+                  [](const Wall &x, const Wall &y) {
+                    return x.axis == y.axis && x.side == y.side;
+                  });
+    walls = new_walls;
+    if (changed)
+      {
+        // Particle-wall glue refers to wall indices that may now mean
+        // another face: drop it, keep the particle-particle state.
+        std::vector<GlueState::Entry> kept;
+        for (const auto &e : glue.entries())
+          if (!GlueState::is_wall_key(e.second))
+            kept.push_back(e);
+        glue.rebuild(kept);
+      }
+  }
+
+
+
+  void
+  ContactProjector::set_weights(const std::vector<double> &new_weights)
+  {
+    for (std::size_t i = 0; i < new_weights.size(); ++i)
+      if (!(new_weights[i] > 0.) || !std::isfinite(new_weights[i]))
+        throw ContactError("weight of particle " + std::to_string(i) +
+                           " must be positive and finite");
+    weights = new_weights;
+  }
+
+
+
+  unsigned int
+  ContactProjector::n_glued() const
+  {
+    return glue.n_glued();
+  }
+
+
+
+  std::vector<unsigned int>
+  ContactProjector::glued_count_per_particle(const std::size_t n_particles) const
+  {
+    return glue.glued_count_per_particle(n_particles);
+  }
+
+
+
+  void
+  ContactProjector::reset_glue()
+  {
+    glue.clear();
+  }
+
+
+
+  void
+  ContactProjector::validate(const std::vector<Vec3>   &positions,
+                             const std::vector<double> &radii,
+                             const std::vector<Vec3>   &predicted,
+                             const double               dt) const
+  {
+    const unsigned dim = settings.dimension;
+    if (!(dt > 0.) || !std::isfinite(dt))
+      {
+        std::ostringstream s;
+        s << "time step dt = " << dt << " is not allowed: it must be positive "
+          << "and finite";
+        throw ContactError(s.str());
+      }
+    if (radii.size() != positions.size() ||
+        predicted.size() != positions.size())
+      throw ContactError(
+        "size mismatch: " + std::to_string(positions.size()) +
+        " positions, " + std::to_string(radii.size()) + " radii, " +
+        std::to_string(predicted.size()) +
+        " predicted velocities (one of each per particle)");
+    if (!weights.empty() && weights.size() != positions.size())
+      throw ContactError("size mismatch: " + std::to_string(weights.size()) +
+                         " weights for " + std::to_string(positions.size()) +
+                         " particles");
+    if (positions.size() >= (std::size_t(1) << 31))
+      throw ContactError("too many particles for 32-bit pair indices");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      {
+        for (unsigned d = 0; d < dim; ++d)
+          {
+            if (!std::isfinite(predicted[i][d]))
+              throw ContactError(
+                "predicted velocity of particle " + std::to_string(i) +
+                " is not finite: " + format_vector(predicted[i], dim));
+            if (!std::isfinite(positions[i][d]))
+              throw ContactError("position of particle " + std::to_string(i) +
+                                 " is not finite: " +
+                                 format_vector(positions[i], dim));
+          }
+        if (!(radii[i] > 0.) || !std::isfinite(radii[i]))
+          {
+            std::ostringstream s;
+            s << "radius of particle " << i << " is " << radii[i]
+              << ": it must be positive and finite";
+            throw ContactError(s.str());
+          }
+      }
+  }
+
+
+
+  double
+  ContactProjector::assemble(const std::vector<Vec3>   &positions,
+                             const std::vector<double> &radii,
+                             const double               d_a)
+  {
+    const unsigned      dim = settings.dimension;
+    const std::uint32_t n   = static_cast<std::uint32_t>(positions.size());
+    const bool          gluey = (settings.model == Model::gluey);
+    const double        allowed_overlap =
+      settings.overlap_tolerance > 0. ? settings.overlap_tolerance :
+                                        10. * settings.tolerance;
+
+    system.clear();
+    search.find_pairs(positions, radii, d_a, pairs);
+    system.reserve(pairs.size() + n / 4 + 16);
+    glue_seen.assign(glue.entries().size(), 0);
+    double min_gap = std::numeric_limits<double>::infinity();
+
+    auto warm = [&](const std::uint32_t first,
+                    const std::uint32_t second,
+                    double             &lambda,
+                    double             &gamma) {
+      const long k = glue.find(first, second);
+      if (k >= 0)
+        {
+          glue_seen[k] = 1;
+          lambda       = glue.entries()[k].lambda;
+          gamma        = gluey ? glue.entries()[k].gamma : 0.;
+        }
+      else
+        lambda = gamma = 0.;
+    };
+
+    auto add_pair = [&](const std::uint32_t i, const std::uint32_t j) {
+      Vec3   e{{0., 0., 0.}};
+      double r2 = 0.;
+      for (unsigned d = 0; d < dim; ++d)
+        {
+          e[d] = positions[j][d] - positions[i][d];
+          r2 += e[d] * e[d];
+        }
+      const double r   = std::sqrt(r2);
+      const double gap = r - radii[i] - radii[j];
+      min_gap          = std::min(min_gap, gap);
+      if (gap < -allowed_overlap || r == 0.)
+        {
+          std::ostringstream s;
+          s.precision(6);
+          s << "particles " << i << " and " << j << " overlap by " << -gap
+            << " (gap D = " << gap << ", centres "
+            << format_vector(positions[i], dim) << " and "
+            << format_vector(positions[j], dim) << ", radii " << radii[i]
+            << " and " << radii[j] << ") at the start of the step; the "
+            << "allowed overlap is " << allowed_overlap;
+          throw ContactError(s.str());
+        }
+      for (unsigned d = 0; d < dim; ++d)
+        e[d] /= r;
+      double lambda, gamma;
+      warm(i, j, lambda, gamma);
+      system.add_row(i, j, e, gap, gamma < 0., lambda, gamma);
+    };
+
+    auto add_wall = [&](const std::uint32_t i, const unsigned int w) {
+      const Wall  &wall = walls[w];
+      const double gap =
+        wall.side * (positions[i][wall.axis] - wall.position) - radii[i];
+      Vec3 e{{0., 0., 0.}};
+      e[wall.axis] = wall.side;
+      double lambda, gamma;
+      warm(i, GlueState::wall_key(w), lambda, gamma);
+      system.add_row(n + w, i, e, gap, gamma < 0., lambda, gamma);
+    };
+
+    for (const auto &p : pairs)
+      add_pair(p.first, p.second);
+
+    // Walls: O(N W) with W <= 6; every gap is computed anyway for the
+    // overlap check, and the rows within the alert distance are added.
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      for (std::uint32_t i = 0; i < n; ++i)
+        {
+          const double gap =
+            walls[w].side * (positions[i][walls[w].axis] - walls[w].position) -
+            radii[i];
+          min_gap = std::min(min_gap, gap);
+          if (gap < -allowed_overlap)
+            {
+              std::ostringstream s;
+              s.precision(6);
+              s << "particle " << i << " and wall " << w << " (x["
+                << walls[w].axis << "] = " << walls[w].position
+                << ") overlap by " << -gap << " (gap D = " << gap
+                << ", centre " << format_vector(positions[i], dim)
+                << ", radius " << radii[i]
+                << ") at the start of the step; the allowed overlap is "
+                << allowed_overlap;
+              throw ContactError(s.str());
+            }
+          if (gap < d_a)
+            add_wall(i, w);
+        }
+
+    // Glued pairs stay in K whatever their distance (numerics section 3).
+    if (gluey)
+      for (std::size_t k = 0; k < glue.entries().size(); ++k)
+        {
+          const auto &entry = glue.entries()[k];
+          if (glue_seen[k] || !(entry.gamma < 0.) || entry.first >= n)
+            continue;
+          if (GlueState::is_wall_key(entry.second))
+            {
+              const unsigned w = entry.second - GlueState::wall_key(0);
+              if (w < walls.size())
+                add_wall(entry.first, w);
+            }
+          else if (entry.second < n)
+            add_pair(entry.first, entry.second);
+        }
+    return min_gap;
+  }
+
+
+
+  ProjectionStatistics
+  ContactProjector::project(const std::vector<Vec3>   &positions,
+                            const std::vector<double> &radii,
+                            const std::vector<Vec3>   &predicted,
+                            const double               dt,
+                            std::vector<Vec3>         &corrected)
+  {
+    validate(positions, radii, predicted, dt);
+    const unsigned dim = settings.dimension;
+    const auto     n   = static_cast<std::uint32_t>(positions.size());
+
+    ProjectionStatistics statistics;
+    corrected = predicted;
+    if (settings.model == Model::none)
+      {
+        // No admissible set: nothing to search, nothing to remember.
+        statistics.min_gap = std::numeric_limits<double>::quiet_NaN();
+        statistics.n_glued = 0;
+        return statistics;
+      }
+
+    // Bodies: particles, then walls (zero inverse weight, own velocity).
+    u_star.assign(n + walls.size(), Vec3{{0., 0., 0.}});
+    inv_w.assign(n + walls.size(), 0.);
+    double u_max = 0.;
+    for (std::uint32_t i = 0; i < n; ++i)
+      {
+        double s = 0.;
+        for (unsigned d = 0; d < dim; ++d)
+          {
+            u_star[i][d] = predicted[i][d];
+            s += predicted[i][d] * predicted[i][d];
+          }
+        u_max    = std::max(u_max, std::sqrt(s));
+        inv_w[i] = weights.empty() ? 1. : 1. / weights[i];
+      }
+    for (std::size_t w = 0; w < walls.size(); ++w)
+      for (unsigned d = 0; d < dim; ++d)
+        u_star[n + w][d] = walls[w].velocity[d];
+
+    const double factor = std::max(2., settings.alert_factor);
+    double       d_a = std::max(settings.alert_distance, factor * dt * u_max);
+
+    ConstraintSystem::Result result;
+    while (true)
+      {
+        const auto start_search = Clock::now();
+        const double min_gap    = assemble(positions, radii, d_a);
+        statistics.search_seconds += seconds_since(start_search);
+        if (statistics.n_search_repeats == 0)
+          statistics.min_gap = min_gap;
+
+        const auto start_solve = Clock::now();
+        const unsigned int iterations_before = result.iterations;
+        result = system.solve(settings.solver,
+                              u_star,
+                              inv_w,
+                              dt,
+                              settings.tolerance,
+                              settings.max_iterations,
+                              u);
+        result.iterations += iterations_before;
+        statistics.solve_seconds += seconds_since(start_solve);
+
+        // A posteriori check of the alert distance (see the header).
+        double u_corrected_max = 0.;
+        for (std::uint32_t i = 0; i < n; ++i)
+          u_corrected_max =
+            std::max(u_corrected_max,
+                     std::sqrt(u[i][0] * u[i][0] + u[i][1] * u[i][1] +
+                               u[i][2] * u[i][2]));
+        if (2. * dt * u_corrected_max <= d_a || statistics.n_search_repeats >= 8)
+          break;
+        d_a = factor * dt * u_corrected_max;
+        ++statistics.n_search_repeats;
+
+        // Warm start the repeated solve with what was just computed.
+        std::vector<GlueState::Entry> entries;
+        entries.reserve(system.size());
+        for (std::size_t k = 0; k < system.size(); ++k)
+          {
+            GlueState::Entry e;
+            if (system.first(k) >= n)
+              {
+                e.first  = system.second(k);
+                e.second = GlueState::wall_key(system.first(k) - n);
+              }
+            else
+              {
+                e.first  = system.first(k);
+                e.second = system.second(k);
+              }
+            e.gamma  = system.gamma(k);
+            e.lambda = system.lambda(k);
+            entries.push_back(e);
+          }
+        glue.rebuild(std::move(entries));
+      }
+
+    // New state: glue update gamma <- min(0, gamma - dt lambda) (gluey), and
+    // the multipliers as the next warm start.
+    std::vector<GlueState::Entry> entries;
+    entries.reserve(system.size());
+    unsigned int n_active = 0;
+    for (std::size_t k = 0; k < system.size(); ++k)
+      {
+        GlueState::Entry e;
+        if (system.first(k) >= n)
+          {
+            e.first  = system.second(k);
+            e.second = GlueState::wall_key(system.first(k) - n);
+          }
+        else
+          {
+            e.first  = system.first(k);
+            e.second = system.second(k);
+          }
+        e.lambda = system.lambda(k);
+        if (settings.model == Model::gluey)
+          {
+            e.gamma = std::min(0., system.gamma(k) - dt * e.lambda);
+            if (e.gamma > -settings.glue_snap)
+              e.gamma = 0.;
+          }
+        if (e.lambda != 0.)
+          ++n_active;
+        entries.push_back(e);
+      }
+    glue.rebuild(std::move(entries));
+
+    for (std::uint32_t i = 0; i < n; ++i)
+      for (unsigned d = 0; d < dim; ++d)
+        corrected[i][d] = u[i][d];
+
+    statistics.n_constraints  = static_cast<unsigned int>(system.size());
+    statistics.n_active       = n_active;
+    statistics.n_glued        = glue.n_glued();
+    statistics.iterations     = result.iterations;
+    statistics.residual       = result.residual;
+    statistics.converged      = result.converged;
+    statistics.alert_distance = d_a;
+    return statistics;
+  }
+
+
+
+  double
+  ContactProjector::minimum_gap(const std::vector<Vec3>   &positions,
+                                const std::vector<double> &radii,
+                                const std::vector<Wall>   &walls,
+                                const unsigned int         dimension,
+                                const double               search_distance)
+  {
+    if (radii.size() != positions.size())
+      throw ContactError("minimum_gap: size mismatch between positions and "
+                         "radii");
+    PairSearch                    search(dimension, PairSearchMethod::cell_list);
+    std::vector<PairSearch::Pair> pairs;
+    search.find_pairs(positions, radii, search_distance, pairs);
+    double min_gap = std::numeric_limits<double>::infinity();
+    for (const auto &p : pairs)
+      {
+        double r2 = 0.;
+        for (unsigned d = 0; d < dimension; ++d)
+          {
+            const double dx = positions[p.second][d] - positions[p.first][d];
+            r2 += dx * dx;
+          }
+        min_gap = std::min(min_gap,
+                           std::sqrt(r2) - radii[p.first] - radii[p.second]);
+      }
+    for (const auto &wall : walls)
+      for (std::size_t i = 0; i < positions.size(); ++i)
+        min_gap = std::min(min_gap,
+                           wall.side * (positions[i][wall.axis] -
+                                        wall.position) -
+                             radii[i]);
+    return min_gap;
+  }
+} // namespace Fidus::Contact

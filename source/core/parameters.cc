@@ -1,0 +1,674 @@
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
+
+#include <fidus/core/input_error.h>
+#include <fidus/core/parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::string
+    format_point(const std::array<double, 3> &x, const unsigned int dim)
+    {
+      std::ostringstream s;
+      s << "(";
+      for (unsigned int d = 0; d < dim; ++d)
+        s << (d ? ", " : "") << x[d];
+      s << ")";
+      return s.str();
+    }
+
+    /// Parse a comma-separated list of numbers; throw naming @p entry.
+    std::vector<double>
+    parse_numbers(const std::string &text, const std::string &entry)
+    {
+      std::vector<double> values;
+      for (const std::string &item :
+           Utilities::split_string_list(text, ','))
+        {
+          if (item.empty())
+            continue;
+          std::size_t end = 0;
+          double      v   = 0;
+          try
+            {
+              v = std::stod(item, &end);
+            }
+          catch (...)
+            {
+              end = 0;
+            }
+          if (end != item.size() || !std::isfinite(v))
+            throw InputError("entry '" + entry + "' has the value '" + text +
+                             "': '" + item +
+                             "' is not a finite number; allowed: a "
+                             "comma-separated list of numbers");
+          values.push_back(v);
+        }
+      return values;
+    }
+
+    std::array<double, 3>
+    parse_point(const std::string  &text,
+                const std::string  &entry,
+                const unsigned int  dim)
+    {
+      const std::vector<double> v = parse_numbers(text, entry);
+      if (v.size() != dim)
+        throw InputError("entry '" + entry + "' has the value '" + text +
+                         "' with " + std::to_string(v.size()) +
+                         " coordinates; allowed: exactly " +
+                         std::to_string(dim) +
+                         " coordinates (Dimension = " + std::to_string(dim) +
+                         ")");
+      std::array<double, 3> x = {{0., 0., 0.}};
+      std::copy(v.begin(), v.end(), x.begin());
+      return x;
+    }
+  } // namespace
+
+
+
+  void
+  Parameters::declare(ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension of the scene, chosen at run time. "
+                      "Allowed: 2 or 3.");
+    prm.declare_entry("Output directory",
+                      "output",
+                      Patterns::FileName(Patterns::FileName::output),
+                      "Folder for all output files (created if missing). "
+                      "Relative paths are relative to the working directory.");
+
+    prm.enter_subsection("Domain");
+    {
+      prm.declare_entry("Lower left",
+                        "0, 0",
+                        Patterns::Anything(),
+                        "Lower-left corner of the box [length], one "
+                        "coordinate per dimension, comma separated.");
+      prm.declare_entry("Upper right",
+                        "1, 1",
+                        Patterns::Anything(),
+                        "Upper-right corner of the box [length], one "
+                        "coordinate per dimension; each larger than the "
+                        "lower-left one.");
+      prm.declare_entry(
+        "Boundary condition",
+        "linear shear",
+        Patterns::Selection(
+          "linear shear|sliding walls|cavity|exact rigid inclusion"),
+        "Velocity imposed on the box. 'linear shear': u = shear rate * "
+        "(y - y_mid) e_x on every face. 'sliding walls': the faces y = "
+        "y_min and y = y_max move at -/+ shear rate * H/2 e_x, the other "
+        "directions are periodic. 'cavity': the same moving walls, the "
+        "other faces at rest. 'exact rigid inclusion': verification scene "
+        "with one particle and the exact solution of a torque-free rigid "
+        "particle in linear shear imposed on the box; error norms are "
+        "reported.");
+      prm.declare_entry("Shear rate",
+                        "1",
+                        Patterns::Anything(),
+                        "Shear rate [1/time] as a function of the time t "
+                        "(muparser syntax), e.g. 't < 10 ? 1 : -1' for a "
+                        "reversal at t = 10.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Fluid");
+    {
+      prm.declare_entry(
+        "Model",
+        "fictitious domain",
+        Patterns::Selection("fictitious domain|undisturbed shear"),
+        "'fictitious domain': Stokes with penalised viscosity and a rigidity "
+        "multiplier on an adaptive mesh. 'undisturbed shear': particles move "
+        "with the undisturbed shear flow at their centre (no mesh, no "
+        "hydrodynamic interaction).");
+      prm.declare_entry("Viscosity",
+                        "1",
+                        Patterns::Double(0.),
+                        "Fluid viscosity eta_f [pressure * time], > 0.");
+      prm.declare_entry("Penalty factor",
+                        "1000",
+                        Patterns::Double(1.),
+                        "r: the solid viscosity is r * eta_f; must be > 1. "
+                        "It is also the augmentation of the Uzawa loop.");
+      prm.declare_entry("Velocity degree",
+                        "2",
+                        Patterns::Integer(2, 4),
+                        "Polynomial degree of the velocity (Taylor-Hood "
+                        "Q(k)/Q(k-1)), 2 to 4.");
+      prm.declare_entry("Rigidity tolerance",
+                        "1e-6",
+                        Patterns::Double(0., 1.),
+                        "Uzawa stop: ||e(u)||_{L2(solid)} / ||e(u)||_{L2(box)} "
+                        "below this value, in (0, 1).");
+      prm.declare_entry("Maximum Uzawa iterations",
+                        "50",
+                        Patterns::Integer(1, 10000),
+                        "Uzawa iterations per solve before a warning, >= 1.");
+      prm.declare_entry(
+        "Reuse multiplier",
+        "true",
+        Patterns::Bool(),
+        "Start the Uzawa loop of a time step from the previous step's "
+        "multiplier when the mesh has not changed (a warm start); otherwise "
+        "from zero.");
+      prm.enter_subsection("Linear solver");
+      {
+        prm.declare_entry("Tolerance",
+                          "1e-8",
+                          Patterns::Double(0., 1.),
+                          "FGMRES stop: residual below this value times the "
+                          "norm of the right-hand side, in (0, 1).");
+        prm.declare_entry("Maximum cheap iterations",
+                          "200",
+                          Patterns::Integer(0, 100000),
+                          "FGMRES iterations with the cheap preconditioner "
+                          "(one AMG V-cycle per block) before switching to "
+                          "inner solves.");
+        prm.declare_entry("Maximum iterations",
+                          "1000",
+                          Patterns::Integer(1, 100000),
+                          "FGMRES iterations with the expensive "
+                          "preconditioner before failing, >= 1.");
+        prm.declare_entry("AMG aggregation threshold",
+                          "0.02",
+                          Patterns::Double(0., 1.),
+                          "ML aggregation threshold of the velocity AMG.");
+        prm.declare_entry("AMG smoother sweeps",
+                          "2",
+                          Patterns::Integer(1, 10),
+                          "Smoother sweeps of the velocity AMG.");
+      }
+      prm.leave_subsection();
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Particles");
+    {
+      prm.declare_entry("Radius",
+                        "0.05",
+                        Patterns::Anything(),
+                        "Particle radius [length], > 0: one value for all "
+                        "particles or one per particle, comma separated.");
+      prm.declare_entry("Positions",
+                        "",
+                        Patterns::Anything(),
+                        "Centres [length], particles separated by ';', "
+                        "coordinates by ',', e.g. '0.451, 0.51; 0.549, 0.49'.");
+      prm.declare_entry("Positions file",
+                        "",
+                        Patterns::Anything(),
+                        "Alternative to 'Positions': a text file with one "
+                        "particle per line, 'x y [z] [radius]' ('#' starts a "
+                        "comment). Relative to the parameter file.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Contact");
+    {
+      prm.declare_entry("Model",
+                        "gluey",
+                        Patterns::Selection("none|inelastic|gluey"),
+                        "Projection of the particle velocities: 'none' (no "
+                        "correction, overlaps possible), 'inelastic' (no "
+                        "overlap), 'gluey' (no overlap, glued pairs keep "
+                        "their gap until the compressive impulse is paid "
+                        "back).");
+      prm.declare_entry("Walls",
+                        "true",
+                        Patterns::Bool(),
+                        "Faces whose imposed velocity has no normal component "
+                        "take part in contact.");
+      prm.declare_entry("Tolerance",
+                        "1e-9",
+                        Patterns::Double(0., 1e-2),
+                        "Allowed constraint violation relative to the "
+                        "smallest radius.");
+      prm.declare_entry(
+        "Dual solver",
+        "projected Gauss-Seidel",
+        Patterns::Selection("projected gradient|accelerated projected "
+                            "gradient|projected Gauss-Seidel"),
+        "Algorithm for the multipliers of the projection.");
+      prm.declare_entry("Alert distance",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Pairs closer than this gap, relative to the "
+                        "smallest radius, enter the constraints (never less "
+                        "than a safe multiple of dt * max |u|), >= 0.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    {
+      prm.declare_entry("End time",
+                        "20",
+                        Patterns::Double(0.),
+                        "Final time [time], >= 0; 0 does one solve.");
+      prm.declare_entry("Time step",
+                        "0.01",
+                        Patterns::Double(0.),
+                        "Time step [time], > 0 (the first and, without "
+                        "adaptive stepping, every step).");
+      prm.declare_entry("Adaptive time step",
+                        "false",
+                        Patterns::Bool(),
+                        "Use dt = min(Maximum time step, CFL number * h_min "
+                        "/ max |U|).");
+      prm.declare_entry("CFL number",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "C of the adaptive time step, > 0.");
+      prm.declare_entry("Maximum time step",
+                        "0.05",
+                        Patterns::Double(0.),
+                        "Upper bound of the adaptive time step [time], > 0.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Mesh refinement");
+    {
+      prm.declare_entry("Initial global refinement",
+                        "3",
+                        Patterns::Integer(0, 12),
+                        "Uniform refinements of the coarse box mesh (whose "
+                        "cells are near-cubes of the smallest box side).");
+      prm.declare_entry("Minimum level",
+                        "3",
+                        Patterns::Integer(0, 15),
+                        "Coarsest level far from particles, <= Initial "
+                        "global refinement.");
+      prm.declare_entry("Maximum level",
+                        "8",
+                        Patterns::Integer(0, 15),
+                        "Finest level at particle surfaces and in gaps, >= "
+                        "Initial global refinement.");
+      prm.declare_entry("Interface band",
+                        "2",
+                        Patterns::Double(0.),
+                        "Cells closer to a particle surface than this many "
+                        "cell sizes (of their own size) are refined, > 0.");
+      prm.declare_entry("Gap refinement distance",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "Cells closer than this distance (relative to the "
+                        "smaller radius) to both surfaces of a pair whose gap "
+                        "is below it are refined to the maximum level.");
+      prm.declare_entry("Remesh fraction",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "Remesh only once a particle has moved more than this "
+                        "fraction of the band (band * finest cell size) since "
+                        "the last remesh; 0 remeshes every step.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    {
+      prm.declare_entry("Field output interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Steps between VTU field outputs; 0 = never.");
+      prm.declare_entry("Particle output interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Steps between VTP particle outputs; 0 = never.");
+      prm.declare_entry("Progress interval",
+                        "1",
+                        Patterns::Integer(1),
+                        "Steps between progress lines on screen, >= 1.");
+      prm.declare_entry("Verbosity",
+                        "normal",
+                        Patterns::Selection("quiet|normal|verbose"),
+                        "Screen output: 'quiet' (errors and warnings only), "
+                        "'normal' (progress lines and timing table), "
+                        "'verbose' (solver details).");
+    }
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  Parameters::parse(ParameterHandler &prm, const std::string &input_name)
+  {
+    dimension        = prm.get_integer("Dimension");
+    output_directory = prm.get("Output directory");
+    const unsigned int dim = dimension;
+
+    prm.enter_subsection("Domain");
+    {
+      lower_left  = parse_point(prm.get("Lower left"), "Domain/Lower left", dim);
+      upper_right =
+        parse_point(prm.get("Upper right"), "Domain/Upper right", dim);
+      const std::string bc = prm.get("Boundary condition");
+      boundary_condition =
+        bc == "linear shear"  ? BoundaryCondition::linear_shear :
+        bc == "sliding walls" ? BoundaryCondition::sliding_walls :
+        bc == "cavity"        ? BoundaryCondition::cavity :
+                                BoundaryCondition::exact_rigid_inclusion;
+      shear_rate = prm.get("Shear rate");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Fluid");
+    {
+      fluid_model           = prm.get("Model") == "fictitious domain" ?
+                                FluidModel::fictitious_domain :
+                                FluidModel::undisturbed_shear;
+      viscosity             = prm.get_double("Viscosity");
+      penalty_factor        = prm.get_double("Penalty factor");
+      velocity_degree       = prm.get_integer("Velocity degree");
+      rigidity_tolerance    = prm.get_double("Rigidity tolerance");
+      max_uzawa_iterations  = prm.get_integer("Maximum Uzawa iterations");
+      reuse_multiplier      = prm.get_bool("Reuse multiplier");
+      prm.enter_subsection("Linear solver");
+      linear_tolerance          = prm.get_double("Tolerance");
+      max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
+      max_linear_iterations     = prm.get_integer("Maximum iterations");
+      amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+      amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+      prm.leave_subsection();
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Particles");
+    {
+      const std::vector<double> given_radii =
+        parse_numbers(prm.get("Radius"), "Particles/Radius");
+      positions_file = prm.get("Positions file");
+      const std::string positions_text = prm.get("Positions");
+      positions.clear();
+      std::vector<double> file_radii;
+
+      if (!positions_file.empty() &&
+          !Utilities::trim(positions_text).empty())
+        throw InputError("entries 'Particles/Positions' and 'Particles/"
+                         "Positions file' are both set; allowed: one of them");
+
+      if (!positions_file.empty())
+        {
+          std::string path = positions_file;
+          if (path[0] != '/')
+            {
+              const auto slash = input_name.find_last_of('/');
+              if (slash != std::string::npos)
+                path = input_name.substr(0, slash + 1) + path;
+            }
+          std::ifstream in(path);
+          if (!in)
+            throw InputError("entry 'Particles/Positions file' has the value '" +
+                             positions_file + "': the file '" + path +
+                             "' cannot be read; allowed: a readable text "
+                             "file with lines 'x y [z] [radius]'");
+          std::string  line;
+          unsigned int line_no = 0;
+          while (std::getline(in, line))
+            {
+              ++line_no;
+              const auto hash = line.find('#');
+              if (hash != std::string::npos)
+                line.erase(hash);
+              std::istringstream  s(line);
+              std::vector<double> v;
+              std::string         word;
+              while (s >> word)
+                {
+                  std::size_t end = 0;
+                  double      x   = 0;
+                  try
+                    {
+                      x = std::stod(word, &end);
+                    }
+                  catch (...)
+                    {
+                      end = 0;
+                    }
+                  if (end != word.size() || !std::isfinite(x))
+                    throw InputError(
+                      "entry 'Particles/Positions file': line " +
+                      std::to_string(line_no) + " of '" + path + "' has '" +
+                      word + "', which is not a finite number");
+                  v.push_back(x);
+                }
+              if (v.empty())
+                continue;
+              if (v.size() != dim && v.size() != dim + 1)
+                throw InputError(
+                  "entry 'Particles/Positions file': line " +
+                  std::to_string(line_no) + " of '" + path + "' has " +
+                  std::to_string(v.size()) + " numbers; allowed: " +
+                  std::to_string(dim) + " coordinates, optionally followed "
+                  "by a radius");
+              std::array<double, 3> x = {{0., 0., 0.}};
+              std::copy(v.begin(), v.begin() + dim, x.begin());
+              positions.push_back(x);
+              if (v.size() == dim + 1)
+                file_radii.push_back(v[dim]);
+            }
+          if (!file_radii.empty() && file_radii.size() != positions.size())
+            throw InputError("entry 'Particles/Positions file': '" + path +
+                             "' gives a radius on some lines only; allowed: "
+                             "a radius on every line or on none");
+        }
+      else
+        {
+          for (const std::string &item :
+               Utilities::split_string_list(positions_text, ';'))
+            if (!item.empty())
+              positions.push_back(
+                parse_point(item, "Particles/Positions", dim));
+        }
+
+      if (!file_radii.empty())
+        radii = file_radii;
+      else if (given_radii.size() == 1)
+        radii.assign(positions.size(), given_radii[0]);
+      else if (given_radii.size() == positions.size() && !positions.empty())
+        radii = given_radii;
+      else
+        throw InputError("entry 'Particles/Radius' has " +
+                         std::to_string(given_radii.size()) +
+                         " values for " + std::to_string(positions.size()) +
+                         " particles; allowed: one value for all particles or "
+                         "one per particle");
+      for (unsigned int i = 0; i < radii.size(); ++i)
+        if (!(radii[i] > 0.))
+          throw InputError("entry 'Particles/Radius' has the value " +
+                           std::to_string(radii[i]) + " for particle " +
+                           std::to_string(i) + "; allowed: a radius > 0");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Contact");
+    {
+      const std::string m = prm.get("Model");
+      contact_model       = m == "none"      ? ContactModel::none :
+                            m == "inelastic" ? ContactModel::inelastic :
+                                               ContactModel::gluey;
+      walls               = prm.get_bool("Walls");
+      contact_tolerance   = prm.get_double("Tolerance");
+      dual_solver         = prm.get("Dual solver");
+      alert_distance      = prm.get_double("Alert distance");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    {
+      end_time           = prm.get_double("End time");
+      time_step          = prm.get_double("Time step");
+      adaptive_time_step = prm.get_bool("Adaptive time step");
+      cfl_number         = prm.get_double("CFL number");
+      maximum_time_step  = prm.get_double("Maximum time step");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Mesh refinement");
+    {
+      initial_global_refinement = prm.get_integer("Initial global refinement");
+      minimum_level             = prm.get_integer("Minimum level");
+      maximum_level             = prm.get_integer("Maximum level");
+      interface_band            = prm.get_double("Interface band");
+      gap_refinement_distance   = prm.get_double("Gap refinement distance");
+      remesh_fraction           = prm.get_double("Remesh fraction");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    {
+      field_output_interval    = prm.get_integer("Field output interval");
+      particle_output_interval = prm.get_integer("Particle output interval");
+      progress_interval        = prm.get_integer("Progress interval");
+      const std::string v      = prm.get("Verbosity");
+      verbosity = v == "quiet"  ? Verbosity::quiet :
+                  v == "normal" ? Verbosity::normal :
+                                  Verbosity::verbose;
+    }
+    prm.leave_subsection();
+
+    check_scene();
+  }
+
+
+
+  void
+  Parameters::check_scene() const
+  {
+    const unsigned int dim  = dimension;
+    const char         axis[3] = {'x', 'y', 'z'};
+
+    auto require_positive = [](const double v, const std::string &entry) {
+      if (!(v > 0.))
+        throw InputError("entry '" + entry + "' has the value " +
+                         std::to_string(v) + "; allowed: a value > 0");
+    };
+    require_positive(viscosity, "Fluid/Viscosity");
+    require_positive(time_step, "Time stepping/Time step");
+    require_positive(cfl_number, "Time stepping/CFL number");
+    require_positive(maximum_time_step, "Time stepping/Maximum time step");
+    require_positive(interface_band, "Mesh refinement/Interface band");
+    require_positive(rigidity_tolerance, "Fluid/Rigidity tolerance");
+    require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
+
+    if (!(penalty_factor > 1.))
+      throw InputError("entry 'Fluid/Penalty factor' has the value " +
+                       std::to_string(penalty_factor) +
+                       "; allowed: a value > 1 (the solid must be more "
+                       "viscous than the fluid)");
+
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(upper_right[d] > lower_left[d]))
+        throw InputError(std::string("entries 'Domain/Lower left' and "
+                                     "'Domain/Upper right' give an empty "
+                                     "box in ") +
+                         axis[d] + ": " + std::to_string(lower_left[d]) +
+                         " >= " + std::to_string(upper_right[d]) +
+                         "; allowed: lower < upper in every direction");
+
+    try
+      {
+        FunctionParser<1> f(1);
+        f.initialize("x,t", shear_rate, {}, true);
+        f.set_time(0.);
+        const double v = f.value(Point<1>());
+        (void)v;
+      }
+    catch (...)
+      {
+        throw InputError("entry 'Domain/Shear rate' has the value '" +
+                         shear_rate +
+                         "', which is not a valid expression; allowed: a "
+                         "muparser expression in t, e.g. 't < 10 ? 1 : -1'");
+      }
+
+    if (minimum_level > initial_global_refinement ||
+        initial_global_refinement > maximum_level)
+      throw InputError(
+        "entries 'Mesh refinement/Minimum level' = " +
+        std::to_string(minimum_level) + ", 'Initial global refinement' = " +
+        std::to_string(initial_global_refinement) + ", 'Maximum level' = " +
+        std::to_string(maximum_level) +
+        "; allowed: Minimum level <= Initial global refinement <= Maximum "
+        "level");
+
+    if (boundary_condition == BoundaryCondition::exact_rigid_inclusion &&
+        positions.size() != 1)
+      throw InputError("entry 'Domain/Boundary condition' is 'exact rigid "
+                       "inclusion' with " +
+                       std::to_string(positions.size()) +
+                       " particles; allowed: exactly one particle");
+    if (boundary_condition == BoundaryCondition::exact_rigid_inclusion &&
+        fluid_model != FluidModel::fictitious_domain)
+      throw InputError("entry 'Fluid/Model' is 'undisturbed shear' with the "
+                       "'exact rigid inclusion' scene; allowed: 'fictitious "
+                       "domain'");
+
+    // Every particle strictly inside the box.
+    for (unsigned int i = 0; i < positions.size(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double lo = positions[i][d] - radii[i];
+          const double hi = positions[i][d] + radii[i];
+          if (lo < lower_left[d] || hi > upper_right[d])
+            {
+              const bool        low   = lo < lower_left[d];
+              std::ostringstream s;
+              s << "entry 'Particles/Positions': particle " << i << " at "
+                << format_point(positions[i], dim) << " with radius "
+                << radii[i] << " cuts or lies outside the box face " << axis[d]
+                << " = " << (low ? lower_left[d] : upper_right[d])
+                << "; allowed: every particle inside the box (Domain/Lower "
+                   "left, Domain/Upper right)";
+              throw InputError(s.str());
+            }
+        }
+
+    // No two particles overlap: sweep along x so that the check stays
+    // O(N log N) for large suspensions.
+    if (positions.size() > 1)
+      {
+        std::vector<unsigned int> order(positions.size());
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+          return positions[a][0] < positions[b][0];
+        });
+        const double max_radius = *std::max_element(radii.begin(), radii.end());
+        for (unsigned int k = 0; k < order.size(); ++k)
+          for (unsigned int l = k + 1; l < order.size(); ++l)
+            {
+              const unsigned int i = order[k], j = order[l];
+              if (positions[j][0] - positions[i][0] > 2 * max_radius)
+                break;
+              double dist2 = 0;
+              for (unsigned int d = 0; d < dim; ++d)
+                dist2 += std::pow(positions[j][d] - positions[i][d], 2);
+              const double gap = std::sqrt(dist2) - radii[i] - radii[j];
+              if (gap < 0.)
+                {
+                  std::ostringstream s;
+                  s << "entry 'Particles/Positions': particles "
+                    << std::min(i, j) << " and " << std::max(i, j)
+                    << " overlap by " << -gap
+                    << "; allowed: non-overlapping particles (gap >= 0)";
+                  throw InputError(s.str());
+                }
+            }
+      }
+  }
+} // namespace Fidus

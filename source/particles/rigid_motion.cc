@@ -1,0 +1,115 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <fidus/core/input_error.h>
+#include <fidus/particles/rigid_motion.h>
+
+#include <cmath>
+
+namespace Fidus
+{
+  template <int dim>
+  std::vector<RigidMotion>
+  compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
+                        const TrilinosWrappers::MPI::BlockVector &solution,
+                        const SolidIndicator<dim>                &solid,
+                        const Quadrature<dim>                    &quadrature)
+  {
+    const unsigned int n = solid.n_particles();
+    // Per particle: volume, int u (3), int r x u (3), J (9).
+    constexpr unsigned int   stride = 16;
+    std::vector<double>      sums(n * stride, 0.);
+    FEValues<dim>            fe_values(dof_handler.get_fe(),
+                            quadrature,
+                            update_values | update_quadrature_points |
+                              update_JxW_values);
+    const FEValuesExtractors::Vector velocities(0);
+    std::vector<Tensor<1, dim>>      u(quadrature.size());
+    std::vector<unsigned int>        cands;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+          if (cands.empty())
+            continue;
+          fe_values.reinit(cell);
+          fe_values[velocities].get_function_values(solution, u);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const Point<dim> &x = fe_values.quadrature_point(q);
+              const int         i = solid.particle_containing(x, cands);
+              if (i < 0)
+                continue;
+              const double JxW = fe_values.JxW(q);
+              double      *s   = &sums[i * stride];
+              double       r[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  r[d] = x[d] - solid.center(i)[d];
+                  v[d] = u[q][d];
+                }
+              s[0] += JxW;
+              for (unsigned int d = 0; d < 3; ++d)
+                s[1 + d] += v[d] * JxW;
+              s[4] += (r[1] * v[2] - r[2] * v[1]) * JxW;
+              s[5] += (r[2] * v[0] - r[0] * v[2]) * JxW;
+              s[6] += (r[0] * v[1] - r[1] * v[0]) * JxW;
+              const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+              for (unsigned int a = 0; a < 3; ++a)
+                for (unsigned int b = 0; b < 3; ++b)
+                  s[7 + 3 * a + b] += ((a == b ? r2 : 0.) - r[a] * r[b]) * JxW;
+            }
+        }
+    Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
+
+    std::vector<RigidMotion> motions(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const double *s = &sums[i * stride];
+        if (!(s[0] > 0.))
+          throw RunError("particle " + std::to_string(i) +
+                         " contains no quadrature point: the mesh is too "
+                         "coarse for its radius " +
+                         std::to_string(solid.radius(i)) +
+                         " (raise 'Mesh refinement/Maximum level')");
+        motions[i].volume = s[0];
+        for (unsigned int d = 0; d < dim; ++d)
+          motions[i].velocity[d] = s[1 + d] / s[0];
+        if (dim == 2)
+          // The 2D inertia about z is J_zz = int |r|^2.
+          motions[i].omega[2] = s[6] / s[7 + 8];
+        else
+          {
+            Tensor<2, 3> J;
+            Tensor<1, 3> m;
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                m[a] = s[4 + a];
+                for (unsigned int b = 0; b < 3; ++b)
+                  J[a][b] = s[7 + 3 * a + b];
+              }
+            const Tensor<1, 3> w = invert(J) * m;
+            for (unsigned int a = 0; a < 3; ++a)
+              motions[i].omega[a] = w[a];
+          }
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!std::isfinite(motions[i].velocity[d]) ||
+              !std::isfinite(motions[i].omega[d]))
+            throw RunError("the rigid velocity of particle " +
+                           std::to_string(i) + " is not finite (NaN)");
+      }
+    return motions;
+  }
+
+  template std::vector<RigidMotion>
+  compute_rigid_motions(const DoFHandler<2> &,
+                        const TrilinosWrappers::MPI::BlockVector &,
+                        const SolidIndicator<2> &,
+                        const Quadrature<2> &);
+  template std::vector<RigidMotion>
+  compute_rigid_motions(const DoFHandler<3> &,
+                        const TrilinosWrappers::MPI::BlockVector &,
+                        const SolidIndicator<3> &,
+                        const Quadrature<3> &);
+} // namespace Fidus

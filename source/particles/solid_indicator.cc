@@ -1,0 +1,176 @@
+#include <fidus/particles/solid_indicator.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace Fidus
+{
+  template <int dim>
+  void
+  SolidIndicator<dim>::reinit(const std::vector<std::array<double, 3>> &pos,
+                              const std::vector<double>                &r,
+                              const Point<dim> &lower_left,
+                              const Point<dim> &upper_right)
+  {
+    centers.resize(pos.size());
+    for (unsigned int i = 0; i < pos.size(); ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        centers[i][d] = pos[i][d];
+    radii = r;
+
+    double max_r = 0;
+    for (const double a : radii)
+      max_r = std::max(max_r, a);
+    double extent = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      extent = std::max(extent, upper_right[d] - lower_left[d]);
+    // Bins of about one diameter, but never more than ~1e6 bins in all.
+    const double max_bins_per_dir = dim == 2 ? 1000. : 100.;
+    bin_size = std::max(2. * max_r, extent / max_bins_per_dir);
+    if (!(bin_size > 0))
+      bin_size = extent;
+    origin           = lower_left;
+    std::size_t total = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        n_bins[d] = std::max(
+          1, int(std::ceil((upper_right[d] - lower_left[d]) / bin_size)));
+        total *= n_bins[d];
+      }
+    bins.assign(total, {});
+    for (unsigned int i = 0; i < centers.size(); ++i)
+      {
+        std::array<int, dim> lo, hi;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] = std::clamp(int(std::floor((centers[i][d] - radii[i] -
+                                               origin[d]) /
+                                              bin_size)),
+                               0,
+                               n_bins[d] - 1);
+            hi[d] = std::clamp(int(std::floor((centers[i][d] + radii[i] -
+                                               origin[d]) /
+                                              bin_size)),
+                               0,
+                               n_bins[d] - 1);
+          }
+        std::array<int, dim> b = lo;
+        while (true)
+          {
+            bins[bin_index(b)].push_back(i);
+            unsigned int d = 0;
+            for (; d < dim; ++d)
+              {
+                if (++b[d] <= hi[d])
+                  break;
+                b[d] = lo[d];
+              }
+            if (d == dim)
+              break;
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  SolidIndicator<dim>::bin_index(const std::array<int, dim> &b) const
+  {
+    unsigned int index = 0;
+    for (int d = dim - 1; d >= 0; --d)
+      index = index * n_bins[d] + b[d];
+    return index;
+  }
+
+
+
+  template <int dim>
+  void
+  SolidIndicator<dim>::candidates(const Point<dim>          &x,
+                                  const double               r,
+                                  std::vector<unsigned int> &out) const
+  {
+    out.clear();
+    if (centers.empty())
+      return;
+    std::array<int, dim> lo, hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] = int(std::floor((x[d] - r - origin[d]) / bin_size));
+        hi[d] = int(std::floor((x[d] + r - origin[d]) / bin_size));
+        if (hi[d] < 0 || lo[d] >= n_bins[d])
+          return;
+        lo[d] = std::max(lo[d], 0);
+        hi[d] = std::min(hi[d], n_bins[d] - 1);
+      }
+    std::array<int, dim> b = lo;
+    while (true)
+      {
+        for (const unsigned int i : bins[bin_index(b)])
+          if (x.distance(centers[i]) < r + radii[i])
+            out.push_back(i);
+        unsigned int d = 0;
+        for (; d < dim; ++d)
+          {
+            if (++b[d] <= hi[d])
+              break;
+            b[d] = lo[d];
+          }
+        if (d == dim)
+          break;
+      }
+    // A particle spanning several bins is found once per bin.
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+
+
+  template <int dim>
+  int
+  SolidIndicator<dim>::particle_containing(
+    const Point<dim>                &x,
+    const std::vector<unsigned int> &cands) const
+  {
+    for (const unsigned int i : cands)
+      if (x.distance_square(centers[i]) < radii[i] * radii[i])
+        return i;
+    return -1;
+  }
+
+
+
+  template <int dim>
+  int
+  SolidIndicator<dim>::particle_containing(const Point<dim> &x) const
+  {
+    if (centers.empty())
+      return -1;
+    std::array<int, dim> b;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        b[d] = int(std::floor((x[d] - origin[d]) / bin_size));
+        if (b[d] < 0 || b[d] >= n_bins[d])
+          return -1;
+      }
+    return particle_containing(x, bins[bin_index(b)]);
+  }
+
+
+
+  template <int dim>
+  double
+  SolidIndicator<dim>::distance_to_surfaces(const Point<dim> &x,
+                                            const double      search) const
+  {
+    candidates(x, search, scratch);
+    double d = search;
+    for (const unsigned int i : scratch)
+      d = std::min(d, std::abs(x.distance(centers[i]) - radii[i]));
+    return d;
+  }
+
+  template class SolidIndicator<2>;
+  template class SolidIndicator<3>;
+} // namespace Fidus
