@@ -1,7 +1,6 @@
-#include <fidus/contact/constraint_system.h>
-
 #include <algorithm>
 #include <cmath>
+#include <fidus/contact/constraint_system.h>
 
 namespace Fidus::Contact
 {
@@ -20,11 +19,11 @@ namespace Fidus::Contact
 
     /// u_b += s_b e, u_a -= s_a e: the action of W^{-1} G^T on one row.
     inline void
-    scatter(std::vector<Vec3>        &u,
-            const std::uint32_t       a,
-            const std::uint32_t       b,
-            const Vec3               &e,
-            const double              delta,
+    scatter(std::vector<Vec3>         &u,
+            const std::uint32_t        a,
+            const std::uint32_t        b,
+            const Vec3                &e,
+            const double               delta,
             const std::vector<double> &inv_w)
     {
       const double sa = inv_w[a] * delta, sb = inv_w[b] * delta;
@@ -140,9 +139,9 @@ namespace Fidus::Contact
       }
     double bound = 0.;
     for (std::size_t k = 0; k < size(); ++k)
-      bound = std::max(bound,
-                       inv_w[a_[k]] * count[a_[k]] +
-                         inv_w[b_[k]] * count[b_[k]]);
+      bound =
+        std::max(bound,
+                 inv_w[a_[k]] * count[a_[k]] + inv_w[b_[k]] * count[b_[k]]);
     return bound;
   }
 
@@ -165,30 +164,72 @@ namespace Fidus::Contact
         diag_[k] = inv_w[a_[k]] + inv_w[b_[k]];
       }
 
+    // The iterations update u incrementally; the velocities returned are
+    // recomputed from the multipliers so that u = u* + W^{-1} G^T lambda
+    // holds to round-off, and the residual is that of exactly what is
+    // returned. If the round-off of the incremental updates hid a residual
+    // above the tolerance, iterate again from the recomputed velocities.
+    Result result;
+    for (int round = 0; round < 4; ++round)
+      {
+        const unsigned int done = result.iterations;
+        if (done >= max_iterations && round > 0)
+          break;
+        result = solve_with(solver,
+                            u_star,
+                            inv_w,
+                            dt,
+                            tolerance,
+                            max_iterations - done,
+                            u);
+        result.iterations += done;
+        apply_multipliers(u_star, inv_w, u);
+        result.residual  = residual(u, dt);
+        result.converged = result.residual <= tolerance;
+        if (result.converged)
+          break;
+      }
+    return result;
+  }
+
+
+
+  ConstraintSystem::Result
+  ConstraintSystem::solve_with(const DualSolver           solver,
+                               const std::vector<Vec3>   &u_star,
+                               const std::vector<double> &inv_w,
+                               const double               dt,
+                               const double               tolerance,
+                               const unsigned int         max_iterations,
+                               std::vector<Vec3>         &u)
+  {
     Result result;
     switch (solver)
       {
         case DualSolver::projected_gauss_seidel:
-          result = solve_gauss_seidel(
-            u_star, inv_w, dt, tolerance, max_iterations, u);
+          result =
+            solve_gauss_seidel(u_star, inv_w, dt, tolerance, max_iterations, u);
           break;
         case DualSolver::accelerated_projected_gradient:
-          result = solve_projected_gradient(
-            u_star, inv_w, dt, tolerance, max_iterations, true, u);
+          result = solve_projected_gradient(u_star,
+                                            inv_w,
+                                            dt,
+                                            tolerance,
+                                            max_iterations,
+                                            true,
+                                            u);
           break;
         case DualSolver::projected_gradient:
         default:
-          result = solve_projected_gradient(
-            u_star, inv_w, dt, tolerance, max_iterations, false, u);
+          result = solve_projected_gradient(u_star,
+                                            inv_w,
+                                            dt,
+                                            tolerance,
+                                            max_iterations,
+                                            false,
+                                            u);
           break;
       }
-
-    // The iterations update u incrementally; recompute it from the
-    // multipliers so that u = u* + W^{-1} G^T lambda holds to round-off, and
-    // report the residual of exactly what is returned.
-    apply_multipliers(u_star, inv_w, u);
-    result.residual  = residual(u, dt);
-    result.converged = result.residual <= tolerance;
     return result;
   }
 
@@ -211,7 +252,7 @@ namespace Fidus::Contact
     // resolved as fast from either end.
     Result result;
     apply_multipliers(u_star, inv_w, u);
-    result.residual = residual(u, dt);
+    result.residual     = residual(u, dt);
     const std::size_t m = size();
     while (result.residual > tolerance && result.iterations < max_iterations)
       {
@@ -242,14 +283,13 @@ namespace Fidus::Contact
 
 
   ConstraintSystem::Result
-  ConstraintSystem::solve_projected_gradient(
-    const std::vector<Vec3>   &u_star,
-    const std::vector<double> &inv_w,
-    const double               dt,
-    const double               tolerance,
-    const unsigned int         max_iterations,
-    const bool                 accelerated,
-    std::vector<Vec3>         &u)
+  ConstraintSystem::solve_projected_gradient(const std::vector<Vec3>   &u_star,
+                                             const std::vector<double> &inv_w,
+                                             const double               dt,
+                                             const double       tolerance,
+                                             const unsigned int max_iterations,
+                                             const bool         accelerated,
+                                             std::vector<Vec3> &u)
   {
     // Projected gradient (Uzawa) on the dual: lambda <- P(lambda - rho c).
     // The gradient c(lambda) = b + A lambda is evaluated matrix-free through

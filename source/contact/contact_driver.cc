@@ -55,7 +55,10 @@ namespace Fidus::Contact
   double
   ContactDriver::minimum_gap(const double search_distance) const
   {
-    return ContactProjector::minimum_gap(
-      x, a, walls, contact.get_settings().dimension, search_distance);
+    return ContactProjector::minimum_gap(x,
+                                         a,
+                                         walls,
+                                         contact.get_settings().dimension,
+                                         search_distance);
   }
 } // namespace Fidus::Contact

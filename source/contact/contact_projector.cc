@@ -1,8 +1,7 @@
-#include <fidus/contact/contact_projector.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fidus/contact/contact_projector.h>
 #include <sstream>
 
 namespace Fidus::Contact
@@ -123,7 +122,8 @@ namespace Fidus::Contact
 
 
   std::vector<unsigned int>
-  ContactProjector::glued_count_per_particle(const std::size_t n_particles) const
+  ContactProjector::glued_count_per_particle(
+    const std::size_t n_particles) const
   {
     return glue.glued_count_per_particle(n_particles);
   }
@@ -154,11 +154,10 @@ namespace Fidus::Contact
       }
     if (radii.size() != positions.size() ||
         predicted.size() != positions.size())
-      throw ContactError(
-        "size mismatch: " + std::to_string(positions.size()) +
-        " positions, " + std::to_string(radii.size()) + " radii, " +
-        std::to_string(predicted.size()) +
-        " predicted velocities (one of each per particle)");
+      throw ContactError("size mismatch: " + std::to_string(positions.size()) +
+                         " positions, " + std::to_string(radii.size()) +
+                         " radii, " + std::to_string(predicted.size()) +
+                         " predicted velocities (one of each per particle)");
     if (!weights.empty() && weights.size() != positions.size())
       throw ContactError("size mismatch: " + std::to_string(weights.size()) +
                          " weights for " + std::to_string(positions.size()) +
@@ -174,9 +173,9 @@ namespace Fidus::Contact
                 "predicted velocity of particle " + std::to_string(i) +
                 " is not finite: " + format_vector(predicted[i], dim));
             if (!std::isfinite(positions[i][d]))
-              throw ContactError("position of particle " + std::to_string(i) +
-                                 " is not finite: " +
-                                 format_vector(positions[i], dim));
+              throw ContactError(
+                "position of particle " + std::to_string(i) +
+                " is not finite: " + format_vector(positions[i], dim));
           }
         if (!(radii[i] > 0.) || !std::isfinite(radii[i]))
           {
@@ -195,12 +194,12 @@ namespace Fidus::Contact
                              const std::vector<double> &radii,
                              const double               d_a)
   {
-    const unsigned      dim = settings.dimension;
-    const std::uint32_t n   = static_cast<std::uint32_t>(positions.size());
+    const unsigned      dim   = settings.dimension;
+    const std::uint32_t n     = static_cast<std::uint32_t>(positions.size());
     const bool          gluey = (settings.model == Model::gluey);
-    const double        allowed_overlap =
-      settings.overlap_tolerance > 0. ? settings.overlap_tolerance :
-                                        10. * settings.tolerance;
+    const double        allowed_overlap = settings.overlap_tolerance > 0. ?
+                                            settings.overlap_tolerance :
+                                            10. * settings.tolerance;
 
     system.clear();
     search.find_pairs(positions, radii, d_a, pairs);
@@ -282,9 +281,8 @@ namespace Fidus::Contact
               s.precision(6);
               s << "particle " << i << " and wall " << w << " (x["
                 << walls[w].axis << "] = " << walls[w].position
-                << ") overlap by " << -gap << " (gap D = " << gap
-                << ", centre " << format_vector(positions[i], dim)
-                << ", radius " << radii[i]
+                << ") overlap by " << -gap << " (gap D = " << gap << ", centre "
+                << format_vector(positions[i], dim) << ", radius " << radii[i]
                 << ") at the start of the step; the allowed overlap is "
                 << allowed_overlap;
               throw ContactError(s.str());
@@ -360,15 +358,15 @@ namespace Fidus::Contact
     ConstraintSystem::Result result;
     while (true)
       {
-        const auto start_search = Clock::now();
-        const double min_gap    = assemble(positions, radii, d_a);
+        const auto   start_search = Clock::now();
+        const double min_gap      = assemble(positions, radii, d_a);
         statistics.search_seconds += seconds_since(start_search);
         if (statistics.n_search_repeats == 0)
           statistics.min_gap = min_gap;
 
-        const auto start_solve = Clock::now();
+        const auto         start_solve       = Clock::now();
         const unsigned int iterations_before = result.iterations;
-        result = system.solve(settings.solver,
+        result                               = system.solve(settings.solver,
                               u_star,
                               inv_w,
                               dt,
@@ -385,7 +383,8 @@ namespace Fidus::Contact
             std::max(u_corrected_max,
                      std::sqrt(u[i][0] * u[i][0] + u[i][1] * u[i][1] +
                                u[i][2] * u[i][2]));
-        if (2. * dt * u_corrected_max <= d_a || statistics.n_search_repeats >= 8)
+        if (2. * dt * u_corrected_max <= d_a ||
+            statistics.n_search_repeats >= 8)
           break;
         d_a = factor * dt * u_corrected_max;
         ++statistics.n_search_repeats;
@@ -470,7 +469,7 @@ namespace Fidus::Contact
     if (radii.size() != positions.size())
       throw ContactError("minimum_gap: size mismatch between positions and "
                          "radii");
-    PairSearch                    search(dimension, PairSearchMethod::cell_list);
+    PairSearch search(dimension, PairSearchMethod::cell_list);
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, search_distance, pairs);
     double min_gap = std::numeric_limits<double>::infinity();
@@ -482,15 +481,15 @@ namespace Fidus::Contact
             const double dx = positions[p.second][d] - positions[p.first][d];
             r2 += dx * dx;
           }
-        min_gap = std::min(min_gap,
-                           std::sqrt(r2) - radii[p.first] - radii[p.second]);
+        min_gap =
+          std::min(min_gap, std::sqrt(r2) - radii[p.first] - radii[p.second]);
       }
     for (const auto &wall : walls)
       for (std::size_t i = 0; i < positions.size(); ++i)
-        min_gap = std::min(min_gap,
-                           wall.side * (positions[i][wall.axis] -
-                                        wall.position) -
-                             radii[i]);
+        min_gap =
+          std::min(min_gap,
+                   wall.side * (positions[i][wall.axis] - wall.position) -
+                     radii[i]);
     return min_gap;
   }
 } // namespace Fidus::Contact

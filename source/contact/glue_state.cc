@@ -1,6 +1,5 @@
-#include <fidus/contact/glue_state.h>
-
 #include <algorithm>
+#include <fidus/contact/glue_state.h>
 
 namespace Fidus::Contact
 {
@@ -56,8 +55,10 @@ namespace Fidus::Contact
   unsigned int
   GlueState::n_glued() const
   {
-    return static_cast<unsigned int>(std::count_if(
-      data.begin(), data.end(), [](const Entry &e) { return e.gamma < 0.; }));
+    return static_cast<unsigned int>(
+      std::count_if(data.begin(), data.end(), [](const Entry &e) {
+        return e.gamma < 0.;
+      }));
   }
 
 

@@ -6,11 +6,10 @@
 #ifndef BOOST_ALLOW_DEPRECATED_HEADERS
 #  define BOOST_ALLOW_DEPRECATED_HEADERS
 #endif
+#include <algorithm>
 #include <boost/geometry/geometries/box.hpp>
 #include <boost/geometry/geometries/point.hpp>
 #include <boost/geometry/index/rtree.hpp>
-
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -200,8 +199,8 @@ namespace Fidus::Contact
     using Box     = bg::model::box<Point>;
     using Value   = std::pair<Box, std::uint32_t>;
 
-    const std::size_t n = positions.size();
-    auto box_of = [&](const std::size_t i, const double extra) {
+    const std::size_t n      = positions.size();
+    auto              box_of = [&](const std::size_t i, const double extra) {
       Point lo, hi;
       lo.template set<0>(positions[i][0] - radii[i] - extra);
       hi.template set<0>(positions[i][0] + radii[i] + extra);

@@ -1,9 +1,8 @@
 #ifndef fidus_contact_constraint_system_h
 #define fidus_contact_constraint_system_h
 
-#include <fidus/contact/contact_types.h>
-
 #include <cstdint>
+#include <fidus/contact/contact_types.h>
 #include <vector>
 
 namespace Fidus::Contact
@@ -148,6 +147,15 @@ namespace Fidus::Contact
     apply_multipliers(const std::vector<Vec3>   &u_star,
                       const std::vector<double> &inv_w,
                       std::vector<Vec3>         &u) const;
+
+    Result
+    solve_with(DualSolver                 solver,
+               const std::vector<Vec3>   &u_star,
+               const std::vector<double> &inv_w,
+               double                     dt,
+               double                     tolerance,
+               unsigned int               max_iterations,
+               std::vector<Vec3>         &u);
 
     double
     gershgorin_bound(const std::vector<double> &inv_w,

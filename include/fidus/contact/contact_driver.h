@@ -2,7 +2,6 @@
 #define fidus_contact_contact_driver_h
 
 #include <fidus/contact/contact_projector.h>
-
 #include <functional>
 #include <vector>
 
@@ -27,10 +26,10 @@ namespace Fidus::Contact
      * @param positions initial centres, @param radii radii (one per particle).
      * @param field the prescribed velocity u(x, t).
      */
-    ContactDriver(const Settings       &settings,
-                  std::vector<Vec3>     positions,
-                  std::vector<double>   radii,
-                  VelocityField         field);
+    ContactDriver(const Settings     &settings,
+                  std::vector<Vec3>   positions,
+                  std::vector<double> radii,
+                  VelocityField       field);
 
     /// Set the walls (see ContactProjector::set_walls()).
     void
@@ -92,8 +91,8 @@ namespace Fidus::Contact
     minimum_gap(double search_distance) const;
 
   private:
-    ContactProjector  contact;
-    std::vector<Wall> walls;
+    ContactProjector    contact;
+    std::vector<Wall>   walls;
     std::vector<Vec3>   x;
     std::vector<double> a;
     VelocityField       field;

@@ -6,7 +6,6 @@
 #include <fidus/contact/contact_types.h>
 #include <fidus/contact/glue_state.h>
 #include <fidus/contact/pair_search.h>
-
 #include <limits>
 #include <vector>
 
@@ -155,8 +154,8 @@ namespace Fidus::Contact
              const std::vector<double> &radii,
              double                     d_a);
 
-    Settings          settings;
-    std::vector<Wall> walls;
+    Settings            settings;
+    std::vector<Wall>   walls;
     std::vector<double> weights;
 
     PairSearch       search;

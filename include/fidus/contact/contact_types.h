@@ -82,14 +82,14 @@ namespace Fidus::Contact
   /// What one projection did.
   struct ProjectionStatistics
   {
-    unsigned int n_constraints    = 0;
-    unsigned int n_active         = 0; ///< constraints with lambda != 0
-    unsigned int n_glued          = 0; ///< glued pairs after the step
-    unsigned int iterations       = 0;
-    double       residual         = 0.; ///< max constraint violation (length)
-    bool         converged        = true;
-    double       min_gap          = 0.; ///< smallest gap before the step
-    double       alert_distance   = 0.; ///< alert distance actually used
+    unsigned int n_constraints  = 0;
+    unsigned int n_active       = 0; ///< constraints with lambda != 0
+    unsigned int n_glued        = 0; ///< glued pairs after the step
+    unsigned int iterations     = 0;
+    double       residual       = 0.; ///< max constraint violation (length)
+    bool         converged      = true;
+    double       min_gap        = 0.; ///< smallest gap before the step
+    double       alert_distance = 0.; ///< alert distance actually used
     /// How many times the pair search was redone with a larger alert
     /// distance because corrected velocities outran the first one.
     unsigned int n_search_repeats = 0;

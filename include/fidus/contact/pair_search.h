@@ -1,9 +1,8 @@
 #ifndef fidus_contact_pair_search_h
 #define fidus_contact_pair_search_h
 
-#include <fidus/contact/contact_types.h>
-
 #include <cstdint>
+#include <fidus/contact/contact_types.h>
 #include <utility>
 #include <vector>
 
