@@ -207,8 +207,22 @@ namespace Fidus::Contact
     switch (solver)
       {
         case DualSolver::projected_gauss_seidel:
-          result =
-            solve_gauss_seidel(u_star, inv_w, dt, tolerance, max_iterations, u);
+          result = solve_gauss_seidel(u_star,
+                                      inv_w,
+                                      dt,
+                                      tolerance,
+                                      max_iterations,
+                                      false,
+                                      u);
+          break;
+        case DualSolver::projected_gauss_seidel_subspace:
+          result = solve_gauss_seidel(u_star,
+                                      inv_w,
+                                      dt,
+                                      tolerance,
+                                      max_iterations,
+                                      true,
+                                      u);
           break;
         case DualSolver::accelerated_projected_gradient:
           result = solve_projected_gradient(u_star,
@@ -241,6 +255,7 @@ namespace Fidus::Contact
                                        const double               dt,
                                        const double               tolerance,
                                        const unsigned int max_iterations,
+                                       const bool         subspace,
                                        std::vector<Vec3> &u)
   {
     // Projected Gauss-Seidel on the dual: row by row, solve exactly for
@@ -275,9 +290,150 @@ namespace Fidus::Contact
           }
         ++result.iterations;
         result.residual = residual(u, dt);
+        if (subspace && result.residual > tolerance &&
+            result.iterations % sweeps_per_subspace_step == 0)
+          {
+            subspace_step(u_star, inv_w, dt, tolerance, u);
+            result.residual = residual(u, dt);
+          }
       }
     result.converged = result.residual <= tolerance;
     return result;
+  }
+
+
+
+  double
+  ConstraintSystem::dual_objective(const std::vector<Vec3>   &u_star,
+                                   const std::vector<double> &inv_w,
+                                   const std::vector<Vec3>   &u) const
+  {
+    // f(lambda) = 1/2 lambda^T A lambda + b^T lambda with
+    // lambda^T A lambda = |u - u*|_W^2 and b = D/dt + G u*.
+    double f = 0.;
+    for (std::size_t p = 0; p < u.size(); ++p)
+      if (inv_w[p] > 0.)
+        for (unsigned d = 0; d < 3; ++d)
+          f += 0.5 * (u[p][d] - u_star[p][d]) * (u[p][d] - u_star[p][d]) /
+               inv_w[p];
+    for (std::size_t k = 0; k < size(); ++k)
+      if (lambda_[k] != 0.)
+        f += lambda_[k] *
+             (rhs_[k] + relative_normal_velocity(u_star, a_[k], b_[k], e_[k]));
+    return f;
+  }
+
+
+
+  void
+  ConstraintSystem::subspace_step(const std::vector<Vec3>   &u_star,
+                                  const std::vector<double> &inv_w,
+                                  const double               dt,
+                                  const double               tolerance,
+                                  std::vector<Vec3>         &u)
+  {
+    // Gauss-Seidel removes the local error fast but needs O(L^2) sweeps for
+    // the smooth, long-range error of a jammed packing of diameter L (the
+    // force network carries a compression across the whole packing). Once
+    // the sweeps have found which rows are active (glued, or lambda > 0),
+    // that error lives in the subspace of the active rows, where the problem
+    // is the linear system A_SS delta = -c_S; conjugate gradients solve it
+    // matrix-free in O(sqrt(cond)) products. The step is then projected on
+    // lambda >= 0 and kept only if it lowers the dual objective, otherwise
+    // it is cut at the first bound it hits (on that segment the convex
+    // objective cannot increase). Every step therefore decreases the dual
+    // objective, like the sweeps, so the combination keeps converging.
+    const std::size_t        m = size();
+    std::vector<std::size_t> active;
+    active.reserve(m);
+    for (std::size_t k = 0; k < m; ++k)
+      if (glued_[k] || lambda_[k] > 0.)
+        active.push_back(k);
+    const std::size_t s = active.size();
+    if (s == 0)
+      return;
+
+    std::vector<double> r(s), p(s), q(s), delta(s, 0.);
+    std::vector<Vec3>   v(u.size());
+    double              rr = 0.;
+    for (std::size_t i = 0; i < s; ++i)
+      {
+        const std::size_t k = active[i];
+        r[i] = -(rhs_[k] + relative_normal_velocity(u, a_[k], b_[k], e_[k]));
+        p[i] = r[i];
+        rr += r[i] * r[i];
+      }
+    const double stop = 0.01 * tolerance / dt;
+    for (unsigned int j = 0; j < max_cg_iterations; ++j)
+      {
+        // q = A_SS p = G_S W^{-1} G_S^T p, matrix-free.
+        std::fill(v.begin(), v.end(), Vec3{{0., 0., 0.}});
+        for (std::size_t i = 0; i < s; ++i)
+          {
+            const std::size_t k = active[i];
+            scatter(v, a_[k], b_[k], e_[k], p[i], inv_w);
+          }
+        double pq = 0.;
+        for (std::size_t i = 0; i < s; ++i)
+          {
+            const std::size_t k = active[i];
+            q[i] = relative_normal_velocity(v, a_[k], b_[k], e_[k]);
+            pq += p[i] * q[i];
+          }
+        if (!(pq > 0.))
+          break;
+        const double alpha  = rr / pq;
+        double       rr_new = 0., r_max = 0.;
+        for (std::size_t i = 0; i < s; ++i)
+          {
+            delta[i] += alpha * p[i];
+            r[i] -= alpha * q[i];
+            rr_new += r[i] * r[i];
+            r_max = std::max(r_max, std::abs(r[i]));
+          }
+        if (r_max <= stop)
+          break;
+        const double beta = rr_new / rr;
+        rr                = rr_new;
+        for (std::size_t i = 0; i < s; ++i)
+          p[i] = r[i] + beta * p[i];
+      }
+
+    const double        f_old = dual_objective(u_star, inv_w, u);
+    std::vector<double> old_lambda(s);
+    for (std::size_t i = 0; i < s; ++i)
+      old_lambda[i] = lambda_[active[i]];
+    const std::vector<Vec3> old_u = u;
+
+    // Try the projected full step.
+    for (std::size_t i = 0; i < s; ++i)
+      {
+        const std::size_t k = active[i];
+        double            l = old_lambda[i] + delta[i];
+        if (!glued_[k] && l < 0.)
+          l = 0.;
+        const double change = l - lambda_[k];
+        lambda_[k]          = l;
+        scatter(u, a_[k], b_[k], e_[k], change, inv_w);
+      }
+    if (dual_objective(u_star, inv_w, u) <= f_old)
+      return;
+
+    // Otherwise cut the step at the first bound.
+    double alpha_max = 1.;
+    for (std::size_t i = 0; i < s; ++i)
+      if (!glued_[active[i]] && delta[i] < 0.)
+        alpha_max = std::min(alpha_max, -old_lambda[i] / delta[i]);
+    u = old_u;
+    for (std::size_t i = 0; i < s; ++i)
+      {
+        const std::size_t k = active[i];
+        double            l = old_lambda[i] + alpha_max * delta[i];
+        if (!glued_[k] && l < 0.)
+          l = 0.;
+        lambda_[k] = l;
+        scatter(u, a_[k], b_[k], e_[k], l - old_lambda[i], inv_w);
+      }
   }
 
 

@@ -31,6 +31,8 @@ namespace
           return "projected gradient";
         case DualSolver::accelerated_projected_gradient:
           return "accelerated projected gradient";
+        case DualSolver::projected_gauss_seidel_subspace:
+          return "projected Gauss-Seidel + subspace";
         default:
           return "projected Gauss-Seidel";
       }
@@ -81,7 +83,7 @@ main()
 {
   const double tolerance = 1e-11;
   const double dt        = 0.01;
-  const int    n_steps   = 25;
+  const int    n_steps   = 15;
 
   for (const unsigned dim : {2u, 3u})
     {
@@ -113,7 +115,7 @@ main()
       for (auto &step : u_star)
         for (std::size_t i = 0; i < n; ++i)
           for (unsigned d = 0; d < dim; ++d)
-            step[i][d] = random.uniform(-1., 1.) - 2. * (x0[i][d] - 0.5);
+            step[i][d] = random.uniform(-1., 1.) - 0.5 * (x0[i][d] - 0.5);
 
       for (const Model model : {Model::inelastic, Model::gluey})
         {
@@ -121,6 +123,7 @@ main()
           std::vector<std::vector<Vec3>> reference;
           for (const DualSolver solver :
                {DualSolver::projected_gauss_seidel,
+                DualSolver::projected_gauss_seidel_subspace,
                 DualSolver::accelerated_projected_gradient,
                 DualSolver::projected_gradient})
             {
@@ -197,7 +200,8 @@ main()
                 std::to_string(dim) + "D " +
                 (model == Model::gluey ? "gluey" : "inelastic") + ", " +
                 name(solver);
-              const double tol = 1.001 * tolerance;
+              const double tol             = 1.001 * tolerance;
+              const int    failures_before = TestTools::failures();
               TestTools::check(head + ", all projections converged", converged);
               TestTools::check(head + ", glued and unglued rows present",
                                errors.n_unglued_rows > 0 &&
@@ -224,22 +228,24 @@ main()
                 TestTools::check(head + ", same displacements as Gauss-Seidel "
                                         "(1e-8)",
                                  max_difference <= 1e-8);
-              std::fprintf(stderr,
-                           "%s: stat %.2e sign %.2e feas %.2e compl %.2e eq "
-                           "%.2e lin %.2e true %.2e diff %.2e glued %u "
-                           "unglued %u iterations %u\n",
-                           head.c_str(),
-                           errors.stationarity,
-                           errors.sign,
-                           errors.feasibility,
-                           errors.complementarity,
-                           errors.equality,
-                           worst_linear,
-                           worst_true,
-                           max_difference,
-                           errors.n_glued_rows,
-                           errors.n_unglued_rows,
-                           max_iterations);
+              // Numbers that would make the output unstable are printed
+              // only to explain a failure.
+              if (TestTools::failures() > failures_before)
+                std::printf("%s: stat %.2e sign %.2e feas %.2e compl %.2e eq "
+                            "%.2e lin %.2e true %.2e diff %.2e glued %u "
+                            "unglued %u iterations %u\n",
+                            head.c_str(),
+                            errors.stationarity,
+                            errors.sign,
+                            errors.feasibility,
+                            errors.complementarity,
+                            errors.equality,
+                            worst_linear,
+                            worst_true,
+                            max_difference,
+                            errors.n_glued_rows,
+                            errors.n_unglued_rows,
+                            max_iterations);
             }
         }
     }

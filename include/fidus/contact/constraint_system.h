@@ -176,7 +176,27 @@ namespace Fidus::Contact
                        double                     dt,
                        double                     tolerance,
                        unsigned int               max_iterations,
+                       bool                       subspace,
                        std::vector<Vec3>         &u);
+
+    /// Conjugate-gradient step on the rows that are currently active.
+    void
+    subspace_step(const std::vector<Vec3>   &u_star,
+                  const std::vector<double> &inv_w,
+                  double                     dt,
+                  double                     tolerance,
+                  std::vector<Vec3>         &u);
+
+    /// Dual objective 1/2 lambda^T A lambda + b^T lambda, from u.
+    double
+    dual_objective(const std::vector<Vec3>   &u_star,
+                   const std::vector<double> &inv_w,
+                   const std::vector<Vec3>   &u) const;
+
+    /// Gauss-Seidel sweeps between two subspace steps.
+    static constexpr unsigned int sweeps_per_subspace_step = 5;
+    /// Bound on the conjugate-gradient iterations of one subspace step.
+    static constexpr unsigned int max_cg_iterations = 100;
 
     std::vector<std::uint32_t> a_, b_;
     std::vector<Vec3>          e_;

@@ -28,7 +28,10 @@ namespace Fidus::Contact
   {
     projected_gradient,
     accelerated_projected_gradient,
-    projected_gauss_seidel
+    projected_gauss_seidel,
+    /// Projected Gauss-Seidel sweeps alternated with conjugate-gradient
+    /// steps on the active rows (fast on jammed packings).
+    projected_gauss_seidel_subspace
   };
 
   /**
@@ -58,7 +61,7 @@ namespace Fidus::Contact
   {
     unsigned int dimension = 2;
     Model        model     = Model::gluey;
-    DualSolver   solver    = DualSolver::projected_gauss_seidel;
+    DualSolver   solver    = DualSolver::projected_gauss_seidel_subspace;
     /// Absolute tolerance on constraint violation (length).
     double tolerance = 1e-11;
     /// Maximum dual iterations before reporting non-convergence.
