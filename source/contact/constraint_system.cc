@@ -363,7 +363,7 @@ namespace Fidus::Contact
         p[i] = r[i];
         rr += r[i] * r[i];
       }
-    const double stop = 0.01 * tolerance / dt;
+    const double stop = 0.1 * tolerance / dt;
     for (unsigned int j = 0; j < max_cg_iterations; ++j)
       {
         // q = A_SS p = G_S W^{-1} G_S^T p, matrix-free.

@@ -194,9 +194,9 @@ namespace Fidus::Contact
                    const std::vector<Vec3>   &u) const;
 
     /// Gauss-Seidel sweeps between two subspace steps.
-    static constexpr unsigned int sweeps_per_subspace_step = 5;
+    static constexpr unsigned int sweeps_per_subspace_step = 3;
     /// Bound on the conjugate-gradient iterations of one subspace step.
-    static constexpr unsigned int max_cg_iterations = 100;
+    static constexpr unsigned int max_cg_iterations = 30;
 
     std::vector<std::uint32_t> a_, b_;
     std::vector<Vec3>          e_;
