@@ -79,6 +79,98 @@ namespace Fidus
 
 
 
+  namespace
+  {
+    /// The message of a deal.II exception without its source location.
+    std::string
+    clean_message(const std::exception &e)
+    {
+      std::string       what = e.what();
+      const std::string key  = "Additional information:";
+      const auto        pos  = what.find(key);
+      if (pos != std::string::npos)
+        what = what.substr(pos + key.size());
+      const auto stack = what.find("Stacktrace:");
+      if (stack != std::string::npos)
+        what = what.substr(0, stack);
+      // Collapse the line breaks and indentation of the deal.II format.
+      std::string out;
+      bool        space = false;
+      for (const char c : what)
+        if (c == '\n' || c == ' ' || c == '\t')
+          space = !out.empty();
+        else
+          {
+            if (space)
+              out += ' ';
+            out += c;
+            space = false;
+          }
+      while (!out.empty() && (out.back() == '-' || out.back() == ' '))
+        out.pop_back();
+      return out;
+    }
+
+    Parameters
+    read_from(ParameterHandler  &prm,
+              const std::string &name,
+              const std::string &text,
+              const bool         from_file,
+              std::ostream      *used)
+    {
+      Parameters::declare(prm);
+      try
+        {
+          if (from_file)
+            {
+              std::ifstream in(name);
+              if (!in)
+                throw InputError("cannot read the parameter file '" + name +
+                                 "'");
+              if (name.size() > 5 && name.substr(name.size() - 5) == ".json")
+                prm.parse_input_from_json(in);
+              else
+                prm.parse_input(name);
+            }
+          else
+            prm.parse_input_from_string(text);
+        }
+      catch (const InputError &)
+        {
+          throw;
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(clean_message(e));
+        }
+      Parameters p;
+      p.parse(prm, name);
+      if (used)
+        prm.print_parameters(*used, ParameterHandler::ShortPRM);
+      return p;
+    }
+  } // namespace
+
+
+
+  Parameters
+  read_parameters(const std::string &filename, std::ostream *used)
+  {
+    ParameterHandler prm;
+    return read_from(prm, filename, "", true, used);
+  }
+
+
+
+  Parameters
+  read_parameters_from_string(const std::string &text)
+  {
+    ParameterHandler prm;
+    return read_from(prm, "", text, false, nullptr);
+  }
+
+
+
   void
   Parameters::declare(ParameterHandler &prm)
   {

@@ -5,8 +5,14 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -16,6 +22,7 @@
 #include <fidus/fluid/stokes_solver.h>
 
 #include <cmath>
+#include <deque>
 #include <sstream>
 
 namespace Fidus
@@ -26,6 +33,9 @@ namespace Fidus
   public:
     TrilinosWrappers::PreconditionAMG    amg;
     TrilinosWrappers::PreconditionJacobi jacobi;
+    /// Near-null space of the velocity block handed to ML; must outlive
+    /// the AMG set-up.
+    std::unique_ptr<Epetra_MultiVector> rigid_modes;
   };
 
 
@@ -314,8 +324,11 @@ namespace Fidus
     // system consistent without changing the velocity at the order of the
     // scheme.
     TrilinosWrappers::MPI::Vector ones(owned_partitioning[1], mpi_communicator);
+    // Indices of the block view are block-local: shift by the number of
+    // velocity DoFs to ask the constraints.
+    const types::global_dof_index n_u = owned_partitioning[0].size();
     for (const auto i : owned_partitioning[1])
-      if (!constraints.is_constrained(i))
+      if (!constraints.is_constrained(n_u + i))
         ones(i) = 1.;
     ones.compress(VectorOperation::insert);
     const double n_free = ones * ones;
@@ -539,21 +552,64 @@ namespace Fidus
       amg_data.higher_order_elements = true;
       amg_data.smoother_sweeps       = settings.amg_smoother_sweeps;
       amg_data.aggregation_threshold = settings.amg_aggregation_threshold;
-      // Constant modes of the velocity block, one per component, built by
-      // hand on the locally owned velocity DoFs.
-      std::vector<std::vector<bool>> modes(
-        dim, std::vector<bool>(owned_partitioning[0].n_elements(), false));
+      // Near-null space of the velocity block: translations and rotations.
+      // The solid is r times more viscous than the fluid, so the AMG coarse
+      // spaces must contain the rigid motions that leave the solid
+      // unstrained; translations alone (the usual constant modes) make the
+      // iteration count grow with r.
+      const Epetra_Map &row_map =
+        system_matrix.block(0, 0).trilinos_matrix().RowMap();
+      const unsigned int n_modes = dim == 2 ? 3 : 6;
+      preconditioners->rigid_modes =
+        std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+      Epetra_MultiVector &modes = *preconditioners->rigid_modes;
+      Point<dim>          centre;
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          ComponentMask mask(dim + 1, false);
-          mask.set(d, true);
-          const IndexSet comp = DoFTools::extract_dofs(dof_handler, mask);
-          for (const auto i : comp)
-            if (owned_partitioning[0].is_element(i))
-              modes[d][owned_partitioning[0].index_within_set(i)] = true;
-        }
-      amg_data.constant_modes = modes;
-      preconditioners->amg.initialize(system_matrix.block(0, 0), amg_data);
+        centre[d] = 0.5;
+      {
+        const Quadrature<dim> support(fe.get_unit_support_points());
+        FEValues<dim> fe_support(fe, support, update_quadrature_points);
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_support.reinit(cell);
+              cell->get_dof_indices(dofs);
+              for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+                {
+                  const unsigned int c = fe.system_to_component_index(k).first;
+                  if (c >= dim)
+                    continue;
+                  const int lid = row_map.LID(
+                    static_cast<TrilinosWrappers::types::int_type>(dofs[k]));
+                  if (lid < 0)
+                    continue;
+                  const Tensor<1, dim> x = fe_support.quadrature_point(k) - centre;
+                  modes[c][lid]      = 1.;
+                  if (dim == 2)
+                    modes[2][lid] = c == 0 ? -x[1] : x[0];
+                  else
+                    {
+                      // rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0)
+                      const double rot[3][3] = {{0, x[dim - 1], -x[1]},
+                                                {-x[dim - 1], 0, x[0]},
+                                                {x[1], -x[0], 0}};
+                      for (unsigned int m = 0; m < 3; ++m)
+                        modes[dim + m][lid] = rot[c][m];
+                    }
+                }
+            }
+      }
+      Teuchos::ParameterList              ml_parameters;
+      std::unique_ptr<Epetra_MultiVector> unused_modes;
+      amg_data.set_parameters(ml_parameters,
+                              unused_modes,
+                              system_matrix.block(0, 0));
+      ml_parameters.set("null space: type", "pre-computed");
+      ml_parameters.set("null space: dimension", int(n_modes));
+      ml_parameters.set("null space: vectors", modes.Values());
+      preconditioners->amg.initialize(system_matrix.block(0, 0),
+                                      ml_parameters);
       preconditioners->jacobi.initialize(preconditioner_matrix.block(1, 1));
     }
     stats.setup_seconds = timer.wall_time();
@@ -576,12 +632,33 @@ namespace Fidus
     else
       {
         stats.uzawa_converged = false;
+        // The Uzawa map  lambda -> lambda + rho M u(lambda)  (M: the solid
+        // mask) is affine in lambda. Plain Uzawa contracts each mode by
+        // 1 / (1 + rho mu), where mu measures how much of the mode's strain
+        // lies in the solid; modes that live on thin solid slivers of cut
+        // cells have tiny mu and stall it. Anderson acceleration (a small
+        // least-squares combination of the last few updates, one linear
+        // solve per iteration as before) removes those modes in a few steps.
+        // The least squares are posed in the energy inner product of the
+        // velocity block, a^T A b: the rigid part of an update (which does
+        // not change the load, since e(rigid) = 0) then weighs only eta_f,
+        // its strain in the solid weighs eta_s.
+        constexpr unsigned int                     depth = 5;
+        std::deque<TrilinosWrappers::MPI::Vector> dX, dF, AdF;
+        TrilinosWrappers::MPI::Vector x_prev, f_prev, Af_prev, f, Af;
+        const auto &A = system_matrix.block(0, 0);
         for (unsigned int k = 0; k < settings.max_uzawa_iterations; ++k)
           {
             assemble_multiplier_rhs(solid);
             stats.linear_iterations += solve_linear(stats);
             ++stats.uzawa_iterations;
             stats.rigidity_residual = rigidity_residual(solid);
+            if (settings.verbose &&
+                Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+              std::cout << "    Uzawa " << k << ": rigidity residual "
+                        << stats.rigidity_residual << ", FGMRES total "
+                        << stats.linear_iterations << ", expensive "
+                        << stats.expensive_solves << std::endl;
             if (!std::isfinite(stats.rigidity_residual))
               throw RunError("the Uzawa loop produced a non-finite rigidity "
                              "residual (NaN or inf in the velocity)");
@@ -590,10 +667,58 @@ namespace Fidus
                 stats.uzawa_converged = true;
                 break;
               }
-            // lambda += rho u on the DoFs of cells that meet the solid.
-            TrilinosWrappers::MPI::Vector update(distributed_solution.block(0));
-            update.scale(solid_mask.block(0));
-            distributed_multiplier.block(0).add(rho, update);
+            // f = rho M u: the plain Uzawa update.
+            f = distributed_solution.block(0);
+            f.scale(solid_mask.block(0));
+            f *= rho;
+            if (Af.size() != f.size())
+              Af.reinit(f);
+            A.vmult(Af, f);
+            TrilinosWrappers::MPI::Vector &x = distributed_multiplier.block(0);
+            if (k > 0)
+              {
+                dX.emplace_back(x);
+                dX.back() -= x_prev;
+                dF.emplace_back(f);
+                dF.back() -= f_prev;
+                AdF.emplace_back(Af);
+                AdF.back() -= Af_prev;
+                if (dX.size() > depth)
+                  {
+                    dX.pop_front();
+                    dF.pop_front();
+                    AdF.pop_front();
+                  }
+              }
+            x_prev  = x;
+            f_prev  = f;
+            Af_prev = Af;
+            x += f;
+            if (settings.anderson_acceleration && !dF.empty())
+              {
+                // min |f - dF g|_A: normal equations, lightly regularised.
+                const unsigned int m = dF.size();
+                LAPACKFullMatrix<double> G(m, m);
+                dealii::Vector<double>   g(m);
+                for (unsigned int i = 0; i < m; ++i)
+                  {
+                    g(i) = AdF[i] * f;
+                    for (unsigned int j = 0; j <= i; ++j)
+                      G(i, j) = G(j, i) = AdF[i] * dF[j];
+                  }
+                double trace = 0;
+                for (unsigned int i = 0; i < m; ++i)
+                  trace += G(i, i);
+                for (unsigned int i = 0; i < m; ++i)
+                  G(i, i) += 1e-12 * trace;
+                G.compute_lu_factorization();
+                G.solve(g);
+                for (unsigned int i = 0; i < m; ++i)
+                  {
+                    x.add(-g(i), dX[i]);
+                    x.add(-g(i), dF[i]);
+                  }
+              }
             multiplier = distributed_multiplier;
           }
         multiplier_valid = true;

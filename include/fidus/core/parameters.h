@@ -132,6 +132,21 @@ namespace Fidus
     unsigned int progress_interval        = 1;
     Verbosity    verbosity                = Verbosity::normal;
   };
+
+  /**
+   * Read and check a parameter file (.prm or .json). Every problem, including
+   * those the ParameterHandler finds (unknown entry, value not matching its
+   * pattern), is thrown as one InputError naming the file and the entry.
+   * If @p used_parameters is not null, the complete set of parameters as
+   * used (defaults included) is written to it in .prm form.
+   */
+  Parameters
+  read_parameters(const std::string &filename,
+                  std::ostream      *used_parameters = nullptr);
+
+  /// Same, from the text of a parameter file (for tests and scripts).
+  Parameters
+  read_parameters_from_string(const std::string &text);
 } // namespace Fidus
 
 #endif

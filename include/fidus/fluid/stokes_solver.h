@@ -55,6 +55,12 @@ namespace Fidus
       double       amg_aggregation_threshold = 0.02;
       unsigned int amg_smoother_sweeps       = 2;
       bool         reuse_multiplier          = true;
+      /// Accelerate the Uzawa loop (Anderson mixing of depth 5 in the energy
+      /// inner product). Off by default: on cut-cell slivers it stagnates at
+      /// the same residual as plain Uzawa (see doc/fluid.md).
+      bool anderson_acceleration = false;
+      /// Print one line per Uzawa iteration (rank 0).
+      bool verbose = false;
     };
 
     /// What one solve() did.

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what fidus needs on a fresh Debian (bookworm) machine, and nothing
+# when it is all there already. Used by contrib/run.sh and contrib/test.sh.
+set -euo pipefail
+packages=(libdeal.ii-dev numdiff libeigen3-dev libboost-dev ccache
+          python3-matplotlib clang-format cmake g++ make openmpi-bin)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "fidus: installing ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

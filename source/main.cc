@@ -1,0 +1,134 @@
+// fidus: rigid particles in creeping shear flow, with contact models that
+// keep Stokes reversibility. The program reads one parameter file, picks the
+// dimension at run time and runs the scene.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <fidus/core/input_error.h>
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace
+{
+  void
+  print_usage(std::ostream &out)
+  {
+    out << "Usage: fidus [options] input.prm   (or input.json)\n"
+           "       mpirun -np N fidus input.prm\n\n"
+           "Options:\n"
+           "  --validate          parse and check the file, print any problem,\n"
+           "                      exit non-zero if there is one\n"
+           "  --print-parameters  print every entry with its default and\n"
+           "                      documentation, in .prm form\n"
+           "  --help              this text\n";
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  using namespace Fidus;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+
+  bool        validate_only = false;
+  std::string input;
+  for (int i = 1; i < argc; ++i)
+    {
+      const std::string arg = argv[i];
+      if (arg == "--help" || arg == "-h")
+        {
+          if (root)
+            print_usage(std::cout);
+          return 0;
+        }
+      else if (arg == "--print-parameters")
+        {
+          if (root)
+            {
+              dealii::ParameterHandler prm;
+              Parameters::declare(prm);
+              prm.print_parameters(std::cout,
+                                   dealii::ParameterHandler::PRM);
+            }
+          return 0;
+        }
+      else if (arg == "--validate")
+        validate_only = true;
+      else if (!arg.empty() && arg[0] == '-')
+        {
+          if (root)
+            {
+              std::cerr << "fidus: error: unknown option '" << arg << "'\n";
+              print_usage(std::cerr);
+            }
+          return 1;
+        }
+      else if (input.empty())
+        input = arg;
+      else
+        {
+          if (root)
+            std::cerr << "fidus: error: more than one input file ('" << input
+                      << "', '" << arg << "'); allowed: one\n";
+          return 1;
+        }
+    }
+  if (input.empty())
+    {
+      if (root)
+        {
+          std::cerr << "fidus: error: no parameter file given\n";
+          print_usage(std::cerr);
+        }
+      return 1;
+    }
+
+  try
+    {
+      std::ostringstream used;
+      const Parameters   parameters = read_parameters(input, &used);
+      if (validate_only)
+        {
+          if (root)
+            std::cout << "fidus: " << input << " is valid ("
+                      << parameters.dimension << "D, "
+                      << parameters.n_particles() << " particles)\n";
+          return 0;
+        }
+      if (root)
+        {
+          std::filesystem::create_directories(parameters.output_directory);
+          std::ofstream out(parameters.output_directory +
+                            "/used_parameters.prm");
+          out << used.str();
+        }
+      MPI_Barrier(MPI_COMM_WORLD);
+      run_simulation(parameters);
+    }
+  catch (const InputError &e)
+    {
+      if (root)
+        std::cerr << "fidus: error in '" << input << "': " << e.what()
+                  << std::endl;
+      return 1;
+    }
+  catch (const RunError &e)
+    {
+      if (root)
+        std::cerr << "fidus: run stopped: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "fidus: internal error: " << e.what() << std::endl;
+      return 3;
+    }
+  return 0;
+}
