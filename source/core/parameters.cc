@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <numeric>
 #include <sstream>
 
@@ -673,6 +674,18 @@ namespace Fidus
                          " >= " + std::to_string(upper_right[d]) +
                          "; allowed: lower < upper in every direction");
 
+    // The parser reports syntax errors on std::cerr itself; silence it so
+    // that the user sees one message only.
+    std::ostringstream      swallowed;
+    std::streambuf *const   cerr_buffer = std::cerr.rdbuf(swallowed.rdbuf());
+    struct RestoreCerr
+    {
+      std::streambuf *buffer;
+      ~RestoreCerr()
+      {
+        std::cerr.rdbuf(buffer);
+      }
+    } restore{cerr_buffer};
     try
       {
         FunctionParser<1> f(1);

@@ -730,6 +730,12 @@ namespace Fidus
     distributed_solution.block(1).add(-mean);
     solution = distributed_solution;
     stats.solve_seconds = timer.wall_time();
+    if (settings.verbose &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "    Stokes: assembly " << stats.assemble_seconds
+                << " s, preconditioner set-up " << stats.setup_seconds
+                << " s, Uzawa/FGMRES " << stats.solve_seconds << " s"
+                << std::endl;
     return stats;
   }
 

@@ -20,6 +20,7 @@
 #include <fidus/simulation/simulation.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -92,6 +93,10 @@ namespace Fidus
                       pcout,
                       TimerOutput::never,
                       TimerOutput::wall_times);
+
+    if (root)
+      std::filesystem::create_directories(prm.output_directory);
+    MPI_Barrier(comm);
 
     const bool fictitious = prm.fluid_model == FluidModel::fictitious_domain;
     const unsigned int n  = prm.n_particles();

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Command-line behaviour of fidus: every bad input gets one clear message that
+# names the entry and what is allowed, a non-zero exit status, and nothing is
+# written. Usage: run_cli_tests.sh path/to/fidus path/to/this/folder
+set -u
+fidus="$1"
+here="$2"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+passes=0
+
+base() {
+  cat <<EOF2
+set Dimension = 2
+set Output directory = $work/out
+subsection Particles
+  set Radius = 0.05
+  set Positions = 0.451, 0.51; 0.549, 0.49
+end
+subsection Time stepping
+  set End time = 0
+end
+EOF2
+}
+
+# expect_error NAME PATTERN PRM-TEXT: the run must fail, print PATTERN on
+# stderr, and write no output directory.
+expect_error() {
+  local name="$1" pattern="$2" text="$3"
+  rm -rf "$work/out"
+  printf '%s\n' "$text" > case.prm
+  "$fidus" case.prm > stdout.txt 2> stderr.txt
+  local status=$?
+  if [ $status -ne 0 ] && grep -q -- "$pattern" stderr.txt && [ ! -e "$work/out" ] \
+     && [ "$(grep -c . stderr.txt)" -le 2 ]; then
+    passes=$((passes + 1))
+  else
+    failures=$((failures + 1))
+    echo "FAILED: $name (status $status)"; cat stderr.txt
+  fi
+}
+
+expect_error "overlapping particles" "particles 0 and 1 overlap" \
+  "$(base | sed 's/0.451, 0.51; 0.549, 0.49/0.45, 0.5; 0.5, 0.5/')"
+expect_error "particle outside the box" "cuts or lies outside the box face x = 1" \
+  "$(base | sed 's/0.549, 0.49/0.98, 0.49/')"
+expect_error "radius <= 0" "Particles/Radius.*allowed: a radius > 0" \
+  "$(base | sed 's/Radius = 0.05/Radius = -0.05/')"
+expect_error "penalty factor <= 1" "Penalty factor.*allowed: a value > 1" \
+  "$(base; printf 'subsection Fluid\n  set Penalty factor = 1\nend\n')"
+expect_error "wrong number of coordinates" "Particles/Positions.*allowed: exactly 2 coordinates" \
+  "$(base | sed 's/0.549, 0.49/0.549, 0.49, 0.5/')"
+expect_error "unreadable positions file" "Positions file.*cannot be read" \
+  "$(base | sed 's/set Positions = .*/set Positions file = missing.txt/')"
+expect_error "unknown entry" "No entry with name <Colour>" \
+  "$(base; printf 'set Colour = red\n')"
+expect_error "value out of range" "Dimension" \
+  "$(base | sed 's/Dimension = 2/Dimension = 4/')"
+expect_error "bad shear rate" "Shear rate.*not a valid expression" \
+  "$(base; printf 'subsection Domain\n  set Shear rate = t <\nend\n')"
+expect_error "exact inclusion with two particles" "exactly one particle" \
+  "$(base; printf 'subsection Domain\n  set Boundary condition = exact rigid inclusion\nend\n')"
+
+# A missing file.
+"$fidus" does_not_exist.prm > /dev/null 2> stderr.txt
+if [ $? -ne 0 ] && grep -q "cannot read the parameter file" stderr.txt; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: missing file"; fi
+
+# --validate accepts a good file and writes nothing; rejects a bad one.
+base > good.prm
+rm -rf "$work/out"
+if "$fidus" --validate good.prm > /dev/null 2>&1 && [ ! -e "$work/out" ]; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: --validate good"; fi
+base | sed 's/Radius = 0.05/Radius = 0/' > bad.prm
+if ! "$fidus" --validate bad.prm > /dev/null 2>&1; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: --validate bad"; fi
+
+# --print-parameters documents every fixed entry of interface.md.
+"$fidus" --print-parameters > params.txt
+ok=1
+for entry in "Dimension" "Output directory" "Lower left" "Upper right" \
+  "Boundary condition" "Shear rate" "Penalty factor" "Velocity degree" \
+  "Rigidity tolerance" "Maximum Uzawa iterations" "Radius" "Positions file" \
+  "Walls" "End time" "Time step" "Adaptive time step" \
+  "Initial global refinement" "Minimum level" "Maximum level" \
+  "Interface band" "Field output interval" "Verbosity"; do
+  grep -q "set $entry " params.txt || { ok=0; echo "FAILED: --print-parameters lacks '$entry'"; }
+done
+[ $ok = 1 ] && passes=$((passes + 1)) || failures=$((failures + 1))
+
+# A good run writes used_parameters.prm and both CSV files with headers.
+"$fidus" good.prm > /dev/null 2>&1
+if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,time,id,x,y,z,ux,uy,uz,omega_x,omega_y,omega_z,radius$" \
+   && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds"; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: output files of a good run"; fi
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]

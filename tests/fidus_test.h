@@ -1,0 +1,69 @@
+#ifndef fidus_tests_fidus_test_h
+#define fidus_tests_fidus_test_h
+
+// Small helpers for fidus tests: each check prints one stable line that says
+// OK or FAILED, so that the .output comparison fails when a check fails, and
+// the program's exit status is non-zero too.
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <string>
+
+namespace FidusTest
+{
+  inline int &
+  failures()
+  {
+    static int n = 0;
+    return n;
+  }
+
+  inline bool
+  root()
+  {
+    return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  }
+
+  /// Check lo <= value <= hi. Stdout (compared with the .output file) gets
+  /// only the verdict; the value itself, not stable to the last digit across
+  /// machines, goes to the file measured_values.txt in the test's folder.
+  inline void
+  check_range(const std::string &what,
+              const double       value,
+              const double       lo,
+              const double       hi)
+  {
+    const bool ok = value >= lo && value <= hi && std::isfinite(value);
+    if (!ok)
+      ++failures();
+    if (root())
+      {
+        std::cout << what << " in [" << lo << ", " << hi
+                  << "]: " << (ok ? "OK" : "FAILED") << std::endl;
+        std::ofstream log("measured_values.txt", std::ios::app);
+        log << what << " = " << std::setprecision(8) << value << std::endl;
+      }
+  }
+
+  /// Print a value rounded to @p digits significant digits (for outputs
+  /// that are meant to be compared, e.g. 1 and 2 MPI ranks).
+  inline void
+  print_value(const std::string &what, const double value, const int digits)
+  {
+    if (root())
+      std::cout << what << " = " << std::setprecision(digits) << value
+                << std::endl;
+  }
+
+  inline int
+  exit_code()
+  {
+    return failures() == 0 ? 0 : 1;
+  }
+} // namespace FidusTest
+
+#endif
