@@ -451,7 +451,7 @@ namespace Fidus
     unsigned int iterations = 0;
     bool         done       = false;
     SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData data(
-      50);
+      settings.gmres_restart);
     if (settings.max_cheap_iterations > 0)
       {
         SolverControl control(settings.max_cheap_iterations,

@@ -90,8 +90,10 @@ for entry in "Dimension" "Output directory" "Lower left" "Upper right" \
 done
 [ $ok = 1 ] && passes=$((passes + 1)) || failures=$((failures + 1))
 
-# A good run writes used_parameters.prm and both CSV files with headers.
-"$fidus" good.prm > /dev/null 2>&1
+# A good run writes used_parameters.prm and both CSV files with headers
+# (free-draining particles: no mesh, so that it takes no time).
+{ base; printf 'subsection Fluid\n  set Model = undisturbed shear\nend\n'; } > run.prm
+"$fidus" run.prm > /dev/null 2>&1
 if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,time,id,x,y,z,ux,uy,uz,omega_x,omega_y,omega_z,radius$" \
    && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds"; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: output files of a good run"; fi

@@ -17,7 +17,7 @@ run(const unsigned int dim, const unsigned int level)
 {
   std::ostringstream prm;
   prm << "set Dimension = " << dim << "\n"
-      << "set Output directory = output\n"
+      << "set Output directory = run_output\n"
       << "subsection Domain\n"
       << "  set Lower left = " << (dim == 2 ? "0, 0" : "0, 0, 0") << "\n"
       << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"

@@ -149,7 +149,9 @@ linear_shear()
           cell->set_refine_flag();
       tria.execute_coarsening_and_refinement();
     }
-  Fidus::StokesSolver<dim> solver(tria, {});
+  typename Fidus::StokesSolver<dim>::Settings settings;
+  settings.linear_tolerance = 1e-14;
+  Fidus::StokesSolver<dim> solver(tria, settings);
   std::set<types::boundary_id> ids;
   for (unsigned int b = 0; b < 2 * dim; ++b)
     ids.insert(b);

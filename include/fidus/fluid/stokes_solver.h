@@ -54,6 +54,8 @@ namespace Fidus
       unsigned int max_linear_iterations = 1000;
       double       amg_aggregation_threshold = 0.02;
       unsigned int amg_smoother_sweeps       = 2;
+      /// Krylov vectors kept by FGMRES before a restart.
+      unsigned int gmres_restart = 200;
       bool         reuse_multiplier          = true;
       /// Accelerate the Uzawa loop (Anderson mixing of depth 5 in the energy
       /// inner product). Off by default: on cut-cell slivers it stagnates at
