@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Run one of the seed paper's scenes for the three contact models and draw
 its figure: normalised distance |X_1 - X_0| / (a_0 + a_1) against time, and
 the cross-stream offset |y_1 - y_0| against time.
@@ -24,7 +24,7 @@ args = [a for a in sys.argv[1:] if not a.startswith("--")]
 prm_file = args[0]
 scene = os.path.splitext(os.path.basename(prm_file))[0]
 png = args[1] if len(args) > 1 else os.path.join(top, "doc", scene + ".png")
-fidus = os.path.join(top, "build-release", "fidus")
+fidus = os.environ.get("FIDUS", os.path.join(top, "build-release", "fidus"))
 text = open(prm_file).read()
 outdir = re.search(r"set Output directory\s*=\s*(\S+)", text).group(1)
 
