@@ -4,11 +4,9 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
-
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -19,14 +17,15 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: fidus [options] input.prm   (or input.json)\n"
-           "       mpirun -np N fidus input.prm\n\n"
-           "Options:\n"
-           "  --validate          parse and check the file, print any problem,\n"
-           "                      exit non-zero if there is one\n"
-           "  --print-parameters  print every entry with its default and\n"
-           "                      documentation, in .prm form\n"
-           "  --help              this text\n";
+    out
+      << "Usage: fidus [options] input.prm   (or input.json)\n"
+         "       mpirun -np N fidus input.prm\n\n"
+         "Options:\n"
+         "  --validate          parse and check the file, print any problem,\n"
+         "                      exit non-zero if there is one\n"
+         "  --print-parameters  print every entry with its default and\n"
+         "                      documentation, in .prm form\n"
+         "  --help              this text\n";
   }
 } // namespace
 
@@ -35,7 +34,8 @@ main(int argc, char **argv)
 {
   using namespace Fidus;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const bool                               root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   bool        validate_only = false;
   std::string input;
@@ -54,8 +54,7 @@ main(int argc, char **argv)
             {
               dealii::ParameterHandler prm;
               Parameters::declare(prm);
-              prm.print_parameters(std::cout,
-                                   dealii::ParameterHandler::PRM);
+              prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
             }
           return 0;
         }

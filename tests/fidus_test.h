@@ -5,9 +5,8 @@
 // OK or FAILED, so that the .output comparison fails when a check fails, and
 // the program's exit status is non-zero too.
 
-#include <deal.II/base/mpi.h>
-
 #include <cmath>
+#include <deal.II/base/mpi.h>
 #include <fstream>
 #include <iomanip>
 #include <iostream>

@@ -1,12 +1,10 @@
+#include <algorithm>
+#include <cmath>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
-
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
-
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <numeric>
@@ -34,8 +32,7 @@ namespace Fidus
     parse_numbers(const std::string &text, const std::string &entry)
     {
       std::vector<double> values;
-      for (const std::string &item :
-           Utilities::split_string_list(text, ','))
+      for (const std::string &item : Utilities::split_string_list(text, ','))
         {
           if (item.empty())
             continue;
@@ -60,18 +57,17 @@ namespace Fidus
     }
 
     std::array<double, 3>
-    parse_point(const std::string  &text,
-                const std::string  &entry,
-                const unsigned int  dim)
+    parse_point(const std::string &text,
+                const std::string &entry,
+                const unsigned int dim)
     {
       const std::vector<double> v = parse_numbers(text, entry);
       if (v.size() != dim)
-        throw InputError("entry '" + entry + "' has the value '" + text +
-                         "' with " + std::to_string(v.size()) +
-                         " coordinates; allowed: exactly " +
-                         std::to_string(dim) +
-                         " coordinates (Dimension = " + std::to_string(dim) +
-                         ")");
+        throw InputError(
+          "entry '" + entry + "' has the value '" + text + "' with " +
+          std::to_string(v.size()) + " coordinates; allowed: exactly " +
+          std::to_string(dim) +
+          " coordinates (Dimension = " + std::to_string(dim) + ")");
       std::array<double, 3> x = {{0., 0., 0.}};
       std::copy(v.begin(), v.end(), x.begin());
       return x;
@@ -333,12 +329,12 @@ namespace Fidus
                         Patterns::Double(0., 1e-2),
                         "Allowed constraint violation relative to the "
                         "smallest radius.");
-      prm.declare_entry(
-        "Dual solver",
-        "projected Gauss-Seidel",
-        Patterns::Selection("projected gradient|accelerated projected "
-                            "gradient|projected Gauss-Seidel"),
-        "Algorithm for the multipliers of the projection.");
+      prm.declare_entry("Dual solver",
+                        "projected Gauss-Seidel",
+                        Patterns::Selection(
+                          "projected gradient|accelerated projected "
+                          "gradient|projected Gauss-Seidel"),
+                        "Algorithm for the multipliers of the projection.");
       prm.declare_entry("Alert distance",
                         "0.1",
                         Patterns::Double(0.),
@@ -441,13 +437,13 @@ namespace Fidus
   void
   Parameters::parse(ParameterHandler &prm, const std::string &input_name)
   {
-    dimension        = prm.get_integer("Dimension");
-    output_directory = prm.get("Output directory");
+    dimension              = prm.get_integer("Dimension");
+    output_directory       = prm.get("Output directory");
     const unsigned int dim = dimension;
 
     prm.enter_subsection("Domain");
     {
-      lower_left  = parse_point(prm.get("Lower left"), "Domain/Lower left", dim);
+      lower_left = parse_point(prm.get("Lower left"), "Domain/Lower left", dim);
       upper_right =
         parse_point(prm.get("Upper right"), "Domain/Upper right", dim);
       const std::string bc = prm.get("Boundary condition");
@@ -462,15 +458,15 @@ namespace Fidus
 
     prm.enter_subsection("Fluid");
     {
-      fluid_model           = prm.get("Model") == "fictitious domain" ?
-                                FluidModel::fictitious_domain :
-                                FluidModel::undisturbed_shear;
-      viscosity             = prm.get_double("Viscosity");
-      penalty_factor        = prm.get_double("Penalty factor");
-      velocity_degree       = prm.get_integer("Velocity degree");
-      rigidity_tolerance    = prm.get_double("Rigidity tolerance");
-      max_uzawa_iterations  = prm.get_integer("Maximum Uzawa iterations");
-      reuse_multiplier      = prm.get_bool("Reuse multiplier");
+      fluid_model          = prm.get("Model") == "fictitious domain" ?
+                               FluidModel::fictitious_domain :
+                               FluidModel::undisturbed_shear;
+      viscosity            = prm.get_double("Viscosity");
+      penalty_factor       = prm.get_double("Penalty factor");
+      velocity_degree      = prm.get_integer("Velocity degree");
+      rigidity_tolerance   = prm.get_double("Rigidity tolerance");
+      max_uzawa_iterations = prm.get_integer("Maximum Uzawa iterations");
+      reuse_multiplier     = prm.get_bool("Reuse multiplier");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
@@ -485,13 +481,12 @@ namespace Fidus
     {
       const std::vector<double> given_radii =
         parse_numbers(prm.get("Radius"), "Particles/Radius");
-      positions_file = prm.get("Positions file");
+      positions_file                   = prm.get("Positions file");
       const std::string positions_text = prm.get("Positions");
       positions.clear();
       std::vector<double> file_radii;
 
-      if (!positions_file.empty() &&
-          !Utilities::trim(positions_text).empty())
+      if (!positions_file.empty() && !Utilities::trim(positions_text).empty())
         throw InputError("entries 'Particles/Positions' and 'Particles/"
                          "Positions file' are both set; allowed: one of them");
 
@@ -506,10 +501,11 @@ namespace Fidus
             }
           std::ifstream in(path);
           if (!in)
-            throw InputError("entry 'Particles/Positions file' has the value '" +
-                             positions_file + "': the file '" + path +
-                             "' cannot be read; allowed: a readable text "
-                             "file with lines 'x y [z] [radius]'");
+            throw InputError(
+              "entry 'Particles/Positions file' has the value '" +
+              positions_file + "': the file '" + path +
+              "' cannot be read; allowed: a readable text "
+              "file with lines 'x y [z] [radius]'");
           std::string  line;
           unsigned int line_no = 0;
           while (std::getline(in, line))
@@ -534,21 +530,21 @@ namespace Fidus
                       end = 0;
                     }
                   if (end != word.size() || !std::isfinite(x))
-                    throw InputError(
-                      "entry 'Particles/Positions file': line " +
-                      std::to_string(line_no) + " of '" + path + "' has '" +
-                      word + "', which is not a finite number");
+                    throw InputError("entry 'Particles/Positions file': line " +
+                                     std::to_string(line_no) + " of '" + path +
+                                     "' has '" + word +
+                                     "', which is not a finite number");
                   v.push_back(x);
                 }
               if (v.empty())
                 continue;
               if (v.size() != dim && v.size() != dim + 1)
-                throw InputError(
-                  "entry 'Particles/Positions file': line " +
-                  std::to_string(line_no) + " of '" + path + "' has " +
-                  std::to_string(v.size()) + " numbers; allowed: " +
-                  std::to_string(dim) + " coordinates, optionally followed "
-                  "by a radius");
+                throw InputError("entry 'Particles/Positions file': line " +
+                                 std::to_string(line_no) + " of '" + path +
+                                 "' has " + std::to_string(v.size()) +
+                                 " numbers; allowed: " + std::to_string(dim) +
+                                 " coordinates, optionally followed "
+                                 "by a radius");
               std::array<double, 3> x = {{0., 0., 0.}};
               std::copy(v.begin(), v.begin() + dim, x.begin());
               positions.push_back(x);
@@ -577,8 +573,8 @@ namespace Fidus
         radii = given_radii;
       else
         throw InputError("entry 'Particles/Radius' has " +
-                         std::to_string(given_radii.size()) +
-                         " values for " + std::to_string(positions.size()) +
+                         std::to_string(given_radii.size()) + " values for " +
+                         std::to_string(positions.size()) +
                          " particles; allowed: one value for all particles or "
                          "one per particle");
       for (unsigned int i = 0; i < radii.size(); ++i)
@@ -629,9 +625,9 @@ namespace Fidus
       particle_output_interval = prm.get_integer("Particle output interval");
       progress_interval        = prm.get_integer("Progress interval");
       const std::string v      = prm.get("Verbosity");
-      verbosity = v == "quiet"  ? Verbosity::quiet :
-                  v == "normal" ? Verbosity::normal :
-                                  Verbosity::verbose;
+      verbosity                = v == "quiet"  ? Verbosity::quiet :
+                                 v == "normal" ? Verbosity::normal :
+                                                 Verbosity::verbose;
     }
     prm.leave_subsection();
 
@@ -643,7 +639,7 @@ namespace Fidus
   void
   Parameters::check_scene() const
   {
-    const unsigned int dim  = dimension;
+    const unsigned int dim     = dimension;
     const char         axis[3] = {'x', 'y', 'z'};
 
     auto require_positive = [](const double v, const std::string &entry) {
@@ -676,8 +672,8 @@ namespace Fidus
 
     // The parser reports syntax errors on std::cerr itself; silence it so
     // that the user sees one message only.
-    std::ostringstream      swallowed;
-    std::streambuf *const   cerr_buffer = std::cerr.rdbuf(swallowed.rdbuf());
+    std::ostringstream    swallowed;
+    std::streambuf *const cerr_buffer = std::cerr.rdbuf(swallowed.rdbuf());
     struct RestoreCerr
     {
       std::streambuf *buffer;
@@ -707,8 +703,8 @@ namespace Fidus
       throw InputError(
         "entries 'Mesh refinement/Minimum level' = " +
         std::to_string(minimum_level) + ", 'Initial global refinement' = " +
-        std::to_string(initial_global_refinement) + ", 'Maximum level' = " +
-        std::to_string(maximum_level) +
+        std::to_string(initial_global_refinement) +
+        ", 'Maximum level' = " + std::to_string(maximum_level) +
         "; allowed: Minimum level <= Initial global refinement <= Maximum "
         "level");
 
@@ -732,7 +728,7 @@ namespace Fidus
           const double hi = positions[i][d] + radii[i];
           if (lo < lower_left[d] || hi > upper_right[d])
             {
-              const bool        low   = lo < lower_left[d];
+              const bool         low = lo < lower_left[d];
               std::ostringstream s;
               s << "entry 'Particles/Positions': particle " << i << " at "
                 << format_point(positions[i], dim) << " with radius "

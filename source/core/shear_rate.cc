@@ -1,5 +1,4 @@
 #include <deal.II/base/function_parser.h>
-
 #include <fidus/core/shear_rate.h>
 
 namespace Fidus

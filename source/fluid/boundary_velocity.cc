@@ -1,6 +1,5 @@
-#include <fidus/fluid/boundary_velocity.h>
-
 #include <cmath>
+#include <fidus/fluid/boundary_velocity.h>
 
 namespace Fidus
 {

@@ -1,8 +1,6 @@
-#include <deal.II/lac/vector.h>
-
-#include <fidus/fluid/exact_rigid_inclusion.h>
-
 #include <cmath>
+#include <deal.II/lac/vector.h>
+#include <fidus/fluid/exact_rigid_inclusion.h>
 
 namespace Fidus
 {
@@ -37,10 +35,12 @@ namespace Fidus
 
     if (dim == 2)
       {
-        const double t   = std::atan2(r[1], r[0]);
-        const double ur  = e * std::sin(2 * t) *
-                          (rr - 2 * a * a / rr + std::pow(a, 4) / std::pow(rr, 3));
-        const double ut  = e * std::cos(2 * t) * (rr - std::pow(a, 4) / std::pow(rr, 3));
+        const double t = std::atan2(r[1], r[0]);
+        const double ur =
+          e * std::sin(2 * t) *
+          (rr - 2 * a * a / rr + std::pow(a, 4) / std::pow(rr, 3));
+        const double ut =
+          e * std::cos(2 * t) * (rr - std::pow(a, 4) / std::pow(rr, 3));
         values[0] += ur * std::cos(t) - ut * std::sin(t);
         values[1] += ur * std::sin(t) + ut * std::cos(t);
         values[dim] = -4 * eta * e * a * a * std::sin(2 * t) / (rr * rr);

@@ -1,28 +1,24 @@
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <cmath>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
-
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
-
+#include <deque>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/stokes_solver.h>
-
-#include <cmath>
-#include <deque>
 #include <sstream>
 
 namespace Fidus
@@ -75,9 +71,8 @@ namespace Fidus
 
   template <int dim>
   void
-  StokesSolver<dim>::setup_dofs(
-    const std::vector<unsigned int>    &periodic,
-    const std::set<types::boundary_id> &dirichlet)
+  StokesSolver<dim>::setup_dofs(const std::vector<unsigned int>    &periodic,
+                                const std::set<types::boundary_id> &dirichlet)
   {
     periodic_directions = periodic;
     dirichlet_ids       = dirichlet;
@@ -105,7 +100,10 @@ namespace Fidus
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     for (const unsigned int d : periodic_directions)
-      DoFTools::make_periodicity_constraints(dof_handler, 2 * d, 2 * d + 1, d,
+      DoFTools::make_periodicity_constraints(dof_handler,
+                                             2 * d,
+                                             2 * d + 1,
+                                             d,
                                              constraints);
     const FEValuesExtractors::Vector velocities(0);
     for (const types::boundary_id id : dirichlet_ids)
@@ -124,14 +122,18 @@ namespace Fidus
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
       for (unsigned int c = 0; c < dim + 1; ++c)
         for (unsigned int d = 0; d < dim + 1; ++d)
-          coupling[c][d] = (c == dim && d == dim) ? DoFTools::none :
-                                                    DoFTools::always;
+          coupling[c][d] =
+            (c == dim && d == dim) ? DoFTools::none : DoFTools::always;
       TrilinosWrappers::BlockSparsityPattern sp(owned_partitioning,
                                                 owned_partitioning,
                                                 relevant_partitioning,
                                                 mpi_communicator);
-      DoFTools::make_sparsity_pattern(
-        dof_handler, coupling, sp, constraints, false, this_rank);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      coupling,
+                                      sp,
+                                      constraints,
+                                      false,
+                                      this_rank);
       sp.compress();
       system_matrix.reinit(sp);
     }
@@ -140,14 +142,18 @@ namespace Fidus
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
       for (unsigned int c = 0; c < dim + 1; ++c)
         for (unsigned int d = 0; d < dim + 1; ++d)
-          coupling[c][d] = (c == dim && d == dim) ? DoFTools::always :
-                                                    DoFTools::none;
+          coupling[c][d] =
+            (c == dim && d == dim) ? DoFTools::always : DoFTools::none;
       TrilinosWrappers::BlockSparsityPattern sp(owned_partitioning,
                                                 owned_partitioning,
                                                 relevant_partitioning,
                                                 mpi_communicator);
-      DoFTools::make_sparsity_pattern(
-        dof_handler, coupling, sp, constraints, false, this_rank);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      coupling,
+                                      sp,
+                                      constraints,
+                                      false,
+                                      this_rank);
       sp.compress();
       preconditioner_matrix.reinit(sp);
     }
@@ -185,17 +191,17 @@ namespace Fidus
     base_rhs              = 0;
     solid_mask            = 0;
 
-    FEValues<dim>      fe_values(fe,
+    FEValues<dim>                    fe_values(fe,
                             quadrature,
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
-    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
-    const unsigned int n_q           = quadrature.size();
+    const unsigned int               dofs_per_cell = fe.n_dofs_per_cell();
+    const unsigned int               n_q           = quadrature.size();
     const FEValuesExtractors::Vector velocities(0);
     const FEValuesExtractors::Scalar pressure(dim);
 
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    FullMatrix<double> cell_prec(dofs_per_cell, dofs_per_cell);
+    FullMatrix<double>     cell_matrix(dofs_per_cell, dofs_per_cell);
+    FullMatrix<double>     cell_prec(dofs_per_cell, dofs_per_cell);
     dealii::Vector<double> cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> dofs(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> symgrad(dofs_per_cell);
@@ -205,7 +211,7 @@ namespace Fidus
     std::vector<double>                  eta(n_q);
     std::vector<unsigned int>            cands;
     dealii::Vector<double>               force(dim + 1);
-    std::vector<bool> is_velocity(dofs_per_cell);
+    std::vector<bool>                    is_velocity(dofs_per_cell);
     for (unsigned int k = 0; k < dofs_per_cell; ++k)
       is_velocity[k] = fe.system_to_component_index(k).first < dim;
 
@@ -223,8 +229,9 @@ namespace Fidus
             fe_values.reinit(cell);
             bool meets_solid = false;
             for (unsigned int q = 0; q < n_q && !meets_solid; ++q)
-              meets_solid = solid.particle_containing(
-                              fe_values.quadrature_point(q), cands) >= 0;
+              meets_solid =
+                solid.particle_containing(fe_values.quadrature_point(q),
+                                          cands) >= 0;
             if (meets_solid)
               {
                 cell->get_dof_indices(dofs);
@@ -297,8 +304,11 @@ namespace Fidus
               cell_prec(k, l)   = cell_prec(l, k);
             }
 
-        constraints.distribute_local_to_global(
-          cell_matrix, cell_rhs, dofs, system_matrix, base_rhs);
+        constraints.distribute_local_to_global(cell_matrix,
+                                               cell_rhs,
+                                               dofs,
+                                               system_matrix,
+                                               base_rhs);
         constraints.distribute_local_to_global(cell_prec,
                                                dofs,
                                                preconditioner_matrix);
@@ -349,16 +359,16 @@ namespace Fidus
     if (solid.n_particles() == 0)
       return;
 
-    TrilinosWrappers::MPI::BlockVector load(owned_partitioning,
+    TrilinosWrappers::MPI::BlockVector   load(owned_partitioning,
                                             relevant_partitioning,
                                             mpi_communicator,
                                             true);
-    FEValues<dim>      fe_values(fe,
+    FEValues<dim>                        fe_values(fe,
                             quadrature,
                             update_gradients | update_quadrature_points |
                               update_JxW_values);
-    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
-    const unsigned int n_q           = quadrature.size();
+    const unsigned int                   dofs_per_cell = fe.n_dofs_per_cell();
+    const unsigned int                   n_q           = quadrature.size();
     const FEValuesExtractors::Vector     velocities(0);
     dealii::Vector<double>               cell_rhs(dofs_per_cell);
     std::vector<types::global_dof_index> dofs(dofs_per_cell);
@@ -402,7 +412,7 @@ namespace Fidus
   double
   StokesSolver<dim>::rigidity_residual(const SolidIndicator<dim> &solid) const
   {
-    FEValues<dim> fe_values(fe,
+    FEValues<dim>                        fe_values(fe,
                             quadrature,
                             update_gradients | update_quadrature_points |
                               update_JxW_values);
@@ -414,8 +424,7 @@ namespace Fidus
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          fe_values[velocities].get_function_symmetric_gradients(solution,
-                                                                 eps);
+          fe_values[velocities].get_function_symmetric_gradients(solution, eps);
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
@@ -454,7 +463,7 @@ namespace Fidus
       settings.gmres_restart);
     if (settings.max_cheap_iterations > 0)
       {
-        SolverControl control(settings.max_cheap_iterations,
+        SolverControl                  control(settings.max_cheap_iterations,
                               target,
                               false,
                               false);
@@ -466,7 +475,7 @@ namespace Fidus
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                   data);
+                                                                    data);
             solver.solve(system_matrix, distributed_solution, rhs, cheap);
             done = true;
           }
@@ -477,20 +486,20 @@ namespace Fidus
     if (!done)
       {
         ++stats.expensive_solves;
-        SolverControl control(settings.max_linear_iterations,
+        SolverControl                  control(settings.max_linear_iterations,
                               target,
                               false,
                               false);
-        const BlockSchurPreconditioner expensive(
-          system_matrix,
-          preconditioner_matrix.block(1, 1),
-          preconditioners->amg,
-          preconditioners->jacobi,
-          true);
+        const BlockSchurPreconditioner expensive(system_matrix,
+                                                 preconditioner_matrix.block(1,
+                                                                             1),
+                                                 preconditioners->amg,
+                                                 preconditioners->jacobi,
+                                                 true);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                   data);
+                                                                    data);
             solver.solve(system_matrix, distributed_solution, rhs, expensive);
           }
         catch (const SolverControl::NoConvergence &e)
@@ -498,8 +507,7 @@ namespace Fidus
             std::ostringstream s;
             s << "the Stokes solver (FGMRES) did not converge in "
               << e.last_step << " iterations: residual " << e.last_residual
-              << " > target " << target
-              << " (Fluid/Linear solver/Tolerance = "
+              << " > target " << target << " (Fluid/Linear solver/Tolerance = "
               << settings.linear_tolerance
               << "); try more 'Maximum iterations' or a smaller 'Penalty "
                  "factor'";
@@ -531,7 +539,10 @@ namespace Fidus
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     for (const unsigned int d : periodic_directions)
-      DoFTools::make_periodicity_constraints(dof_handler, 2 * d, 2 * d + 1, d,
+      DoFTools::make_periodicity_constraints(dof_handler,
+                                             2 * d,
+                                             2 * d + 1,
+                                             d,
                                              constraints);
     const FEValuesExtractors::Vector velocities(0);
     for (const types::boundary_id id : dirichlet_ids)
@@ -568,7 +579,7 @@ namespace Fidus
         centre[d] = 0.5;
       {
         const Quadrature<dim> support(fe.get_unit_support_points());
-        FEValues<dim> fe_support(fe, support, update_quadrature_points);
+        FEValues<dim>         fe_support(fe, support, update_quadrature_points);
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
@@ -584,8 +595,9 @@ namespace Fidus
                     static_cast<TrilinosWrappers::types::int_type>(dofs[k]));
                   if (lid < 0)
                     continue;
-                  const Tensor<1, dim> x = fe_support.quadrature_point(k) - centre;
-                  modes[c][lid]      = 1.;
+                  const Tensor<1, dim> x =
+                    fe_support.quadrature_point(k) - centre;
+                  modes[c][lid] = 1.;
                   if (dim == 2)
                     modes[2][lid] = c == 0 ? -x[1] : x[0];
                   else
@@ -608,15 +620,13 @@ namespace Fidus
       ml_parameters.set("null space: type", "pre-computed");
       ml_parameters.set("null space: dimension", int(n_modes));
       ml_parameters.set("null space: vectors", modes.Values());
-      preconditioners->amg.initialize(system_matrix.block(0, 0),
-                                      ml_parameters);
+      preconditioners->amg.initialize(system_matrix.block(0, 0), ml_parameters);
       preconditioners->jacobi.initialize(preconditioner_matrix.block(1, 1));
     }
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();
-    const double rho =
-      2. * (settings.penalty_factor - 1.) * settings.viscosity;
+    const double rho = 2. * (settings.penalty_factor - 1.) * settings.viscosity;
     if (!multiplier_valid || !settings.reuse_multiplier)
       {
         distributed_multiplier = 0;
@@ -643,10 +653,10 @@ namespace Fidus
         // velocity block, a^T A b: the rigid part of an update (which does
         // not change the load, since e(rigid) = 0) then weighs only eta_f,
         // its strain in the solid weighs eta_s.
-        constexpr unsigned int                     depth = 5;
+        constexpr unsigned int                    depth = 5;
         std::deque<TrilinosWrappers::MPI::Vector> dX, dF, AdF;
         TrilinosWrappers::MPI::Vector x_prev, f_prev, Af_prev, f, Af;
-        const auto &A = system_matrix.block(0, 0);
+        const auto                   &A = system_matrix.block(0, 0);
         for (unsigned int k = 0; k < settings.max_uzawa_iterations; ++k)
           {
             assemble_multiplier_rhs(solid);
@@ -697,7 +707,7 @@ namespace Fidus
             if (settings.anderson_acceleration && !dF.empty())
               {
                 // min |f - dF g|_A: normal equations, lightly regularised.
-                const unsigned int m = dF.size();
+                const unsigned int       m = dF.size();
                 LAPACKFullMatrix<double> G(m, m);
                 dealii::Vector<double>   g(m);
                 for (unsigned int i = 0; i < m; ++i)
@@ -728,7 +738,7 @@ namespace Fidus
     const double mean =
       VectorTools::compute_mean_value(dof_handler, quadrature, solution, dim);
     distributed_solution.block(1).add(-mean);
-    solution = distributed_solution;
+    solution            = distributed_solution;
     stats.solve_seconds = timer.wall_time();
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
@@ -747,8 +757,8 @@ namespace Fidus
                                     const SolidIndicator<dim> &solid,
                                     const bool                 fluid_only) const
   {
-    QGauss<dim>   q_error(fe.degree + 2);
-    FEValues<dim> fe_values(fe,
+    QGauss<dim>                      q_error(fe.degree + 2);
+    FEValues<dim>                    fe_values(fe,
                             q_error,
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
@@ -763,7 +773,8 @@ namespace Fidus
     std::vector<unsigned int>        cands;
 
     // Pass 0: pressure means on the integration region; pass 1: errors.
-    double sums[6] = {0, 0, 0, 0, 0, 0}; // |region|, int p_h, int p, eu, egu, ep
+    double sums[6] =
+      {0, 0, 0, 0, 0, 0}; // |region|, int p_h, int p, eu, egu, ep
     for (unsigned int pass = 0; pass < 2; ++pass)
       {
         const double mean_h = pass ? sums[1] / sums[0] : 0.;
@@ -798,10 +809,9 @@ namespace Fidus
                       sums[4] +=
                         (grad_u[q][d] - exact_grad[d]).norm_square() * JxW;
                     }
-                  sums[5] += std::pow((p[q] - mean_h) -
-                                        (exact_value[dim] - mean_e),
-                                      2) *
-                             JxW;
+                  sums[5] +=
+                    std::pow((p[q] - mean_h) - (exact_value[dim] - mean_e), 2) *
+                    JxW;
                 }
             }
         if (pass == 0)

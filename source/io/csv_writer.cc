@@ -1,7 +1,6 @@
+#include <cmath>
 #include <fidus/core/input_error.h>
 #include <fidus/io/csv_writer.h>
-
-#include <cmath>
 #include <iomanip>
 
 namespace Fidus

@@ -1,9 +1,7 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
-
 #include <fidus/io/field_output.h>
-
 #include <fstream>
 
 namespace Fidus
@@ -28,10 +26,10 @@ namespace Fidus
     lambda_names.emplace_back("multiplier_unused");
 
     // Cell data: solid fraction of the quadrature points, level, rank.
-    dealii::Vector<float> solid_fraction(tria.n_active_cells());
-    dealii::Vector<float> level(tria.n_active_cells());
-    dealii::Vector<float> rank(tria.n_active_cells());
-    FEValues<dim>         fe_values(solver.get_fe(),
+    dealii::Vector<float>     solid_fraction(tria.n_active_cells());
+    dealii::Vector<float>     level(tria.n_active_cells());
+    dealii::Vector<float>     rank(tria.n_active_cells());
+    FEValues<dim>             fe_values(solver.get_fe(),
                             solver.get_quadrature(),
                             update_quadrature_points);
     std::vector<unsigned int> cands;
@@ -49,9 +47,8 @@ namespace Fidus
           fe_values.reinit(cell);
           unsigned int inside = 0;
           for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
-            inside +=
-              solid.particle_containing(fe_values.quadrature_point(q), cands) >=
-              0;
+            inside += solid.particle_containing(fe_values.quadrature_point(q),
+                                                cands) >= 0;
           solid_fraction(index) = float(inside) / fe_values.n_quadrature_points;
         }
 
@@ -70,8 +67,13 @@ namespace Fidus
     data_out.add_data_vector(rank, "subdomain");
     data_out.build_patches(solver.get_fe().degree);
 
-    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-      directory + "/", "solution", step, tria.get_communicator(), 5, 0);
+    const std::string pvtu =
+      data_out.write_vtu_with_pvtu_record(directory + "/",
+                                          "solution",
+                                          step,
+                                          tria.get_communicator(),
+                                          5,
+                                          0);
     records.emplace_back(time, pvtu);
     if (this_rank == 0)
       {

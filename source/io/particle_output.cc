@@ -1,6 +1,5 @@
 #include <fidus/core/input_error.h>
 #include <fidus/io/particle_output.h>
-
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -19,8 +18,7 @@ namespace Fidus
     if (!active)
       return;
     std::ostringstream name;
-    name << "particles-" << std::setw(5) << std::setfill('0') << step
-         << ".vtp";
+    name << "particles-" << std::setw(5) << std::setfill('0') << step << ".vtp";
     std::ofstream out(directory + "/" + name.str());
     if (!out)
       throw RunError("cannot write '" + directory + "/" + name.str() + "'");
@@ -37,7 +35,7 @@ namespace Fidus
     for (const auto &p : x)
       out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
     out << "</DataArray>\n</Points>\n<PointData Scalars=\"radius\">\n";
-    auto vector_array = [&](const char                                *nm,
+    auto vector_array = [&](const char                               *nm,
                             const std::vector<std::array<double, 3>> &v) {
       out << "<DataArray type=\"Float64\" Name=\"" << nm
           << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";

@@ -1,8 +1,6 @@
-#include <deal.II/base/mpi.h>
-
-#include <fidus/mesh/mesh_refiner.h>
-
 #include <cmath>
+#include <deal.II/base/mpi.h>
+#include <fidus/mesh/mesh_refiner.h>
 
 namespace Fidus
 {
@@ -52,7 +50,7 @@ namespace Fidus
     parallel::distributed::Triangulation<dim> &triangulation,
     const SolidIndicator<dim>                 &solid) const
   {
-    unsigned int changed_passes = 0;
+    unsigned int       changed_passes = 0;
     const unsigned int max_passes =
       settings.maximum_level - settings.minimum_level + 2;
     for (unsigned int pass = 0; pass < max_passes; ++pass)

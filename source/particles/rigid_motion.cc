@@ -1,10 +1,8 @@
+#include <cmath>
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
-
 #include <fidus/core/input_error.h>
 #include <fidus/particles/rigid_motion.h>
-
-#include <cmath>
 
 namespace Fidus
 {
@@ -17,9 +15,9 @@ namespace Fidus
   {
     const unsigned int n = solid.n_particles();
     // Per particle: volume, int u (3), int r x u (3), J (9).
-    constexpr unsigned int   stride = 16;
-    std::vector<double>      sums(n * stride, 0.);
-    FEValues<dim>            fe_values(dof_handler.get_fe(),
+    constexpr unsigned int           stride = 16;
+    std::vector<double>              sums(n * stride, 0.);
+    FEValues<dim>                    fe_values(dof_handler.get_fe(),
                             quadrature,
                             update_values | update_quadrature_points |
                               update_JxW_values);
@@ -41,8 +39,8 @@ namespace Fidus
               const int         i = solid.particle_containing(x, cands);
               if (i < 0)
                 continue;
-              const double JxW = fe_values.JxW(q);
-              double      *s   = &sums[i * stride];
+              const double JxW  = fe_values.JxW(q);
+              double      *s    = &sums[i * stride];
               double       r[3] = {0, 0, 0}, v[3] = {0, 0, 0};
               for (unsigned int d = 0; d < dim; ++d)
                 {

@@ -1,7 +1,6 @@
-#include <fidus/particles/solid_indicator.h>
-
 #include <algorithm>
 #include <cmath>
+#include <fidus/particles/solid_indicator.h>
 
 namespace Fidus
 {
@@ -29,12 +28,13 @@ namespace Fidus
     bin_size = std::max(2. * max_r, extent / max_bins_per_dir);
     if (!(bin_size > 0))
       bin_size = extent;
-    origin           = lower_left;
+    origin            = lower_left;
     std::size_t total = 1;
     for (unsigned int d = 0; d < dim; ++d)
       {
-        n_bins[d] = std::max(
-          1, int(std::ceil((upper_right[d] - lower_left[d]) / bin_size)));
+        n_bins[d] =
+          std::max(1,
+                   int(std::ceil((upper_right[d] - lower_left[d]) / bin_size)));
         total *= n_bins[d];
       }
     bins.assign(total, {});
@@ -43,16 +43,16 @@ namespace Fidus
         std::array<int, dim> lo, hi;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            lo[d] = std::clamp(int(std::floor((centers[i][d] - radii[i] -
-                                               origin[d]) /
-                                              bin_size)),
-                               0,
-                               n_bins[d] - 1);
-            hi[d] = std::clamp(int(std::floor((centers[i][d] + radii[i] -
-                                               origin[d]) /
-                                              bin_size)),
-                               0,
-                               n_bins[d] - 1);
+            lo[d] =
+              std::clamp(int(std::floor((centers[i][d] - radii[i] - origin[d]) /
+                                        bin_size)),
+                         0,
+                         n_bins[d] - 1);
+            hi[d] =
+              std::clamp(int(std::floor((centers[i][d] + radii[i] - origin[d]) /
+                                        bin_size)),
+                         0,
+                         n_bins[d] - 1);
           }
         std::array<int, dim> b = lo;
         while (true)

@@ -1,8 +1,9 @@
+#include <algorithm>
+#include <cmath>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
-
 #include <fidus/contact/contact_error.h>
 #include <fidus/contact/contact_projector.h>
 #include <fidus/core/input_error.h>
@@ -18,10 +19,7 @@
 #include <fidus/particles/rigid_motion.h>
 #include <fidus/particles/solid_indicator.h>
 #include <fidus/simulation/simulation.h>
-
-#include <algorithm>
 #include <filesystem>
-#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -81,18 +79,15 @@ namespace Fidus
   RunSummary
   Simulation<dim>::run()
   {
-    const MPI_Comm     comm  = MPI_COMM_WORLD;
-    const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
-    const bool         root  = rank == 0;
+    const MPI_Comm     comm = MPI_COMM_WORLD;
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    const bool         root = rank == 0;
     ConditionalOStream pcout(std::cout,
                              root && prm.verbosity != Verbosity::quiet);
     ConditionalOStream vout(std::cout,
                             root && prm.verbosity == Verbosity::verbose);
     Timer              wall_clock;
-    TimerOutput        timer(comm,
-                      pcout,
-                      TimerOutput::never,
-                      TimerOutput::wall_times);
+    TimerOutput timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
 
     if (root)
       std::filesystem::create_directories(prm.output_directory);
@@ -137,8 +132,7 @@ namespace Fidus
     if (prm.boundary_condition != BoundaryCondition::exact_rigid_inclusion)
       for (unsigned int d = 0; d < dim; ++d)
         is_wall_axis[d] =
-          d == 1 ||
-          prm.boundary_condition == BoundaryCondition::cavity ||
+          d == 1 || prm.boundary_condition == BoundaryCondition::cavity ||
           (prm.boundary_condition == BoundaryCondition::linear_shear && d == 2);
     std::vector<Contact::Wall> walls;
     if (prm.walls)
@@ -171,7 +165,7 @@ namespace Fidus
     std::unique_ptr<FieldOutput<dim>>                          field_output;
     BoundaryVelocity<dim> boundary(prm.boundary_condition, lo[1], hi[1]);
     std::unique_ptr<ExactRigidInclusion<dim>> exact;
-    double smallest_side = hi[0] - lo[0];
+    double                                    smallest_side = hi[0] - lo[0];
     for (unsigned int d = 1; d < dim; ++d)
       smallest_side = std::min(smallest_side, hi[d] - lo[d]);
     const double h_finest = smallest_side / std::pow(2., prm.maximum_level);
@@ -182,8 +176,7 @@ namespace Fidus
           typename Triangulation<dim>::MeshSmoothing(
             Triangulation<dim>::smoothing_on_refinement |
             Triangulation<dim>::smoothing_on_coarsening));
-        create_box_mesh(
-          *tria, lo, hi, periodic, prm.initial_global_refinement);
+        create_box_mesh(*tria, lo, hi, periodic, prm.initial_global_refinement);
         typename StokesSolver<dim>::Settings ss;
         ss.degree                    = prm.velocity_degree;
         ss.viscosity                 = prm.viscosity;
@@ -196,7 +189,7 @@ namespace Fidus
         ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
         ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
         ss.reuse_multiplier          = prm.reuse_multiplier;
-        ss.verbose = prm.verbosity == Verbosity::verbose;
+        ss.verbose                   = prm.verbosity == Verbosity::verbose;
         solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
         typename MeshRefiner<dim>::Settings ms;
         ms.minimum_level = prm.minimum_level;
@@ -207,41 +200,50 @@ namespace Fidus
         if (prm.field_output_interval > 0)
           field_output =
             std::make_unique<FieldOutput<dim>>(prm.output_directory);
-        if (prm.boundary_condition ==
-            BoundaryCondition::exact_rigid_inclusion)
+        if (prm.boundary_condition == BoundaryCondition::exact_rigid_inclusion)
           {
             Point<dim> c;
             for (unsigned int d = 0; d < dim; ++d)
               c[d] = prm.positions[0][d];
-            exact = std::make_unique<ExactRigidInclusion<dim>>(
-              c, prm.radii[0], shear(0.), prm.viscosity);
+            exact = std::make_unique<ExactRigidInclusion<dim>>(c,
+                                                               prm.radii[0],
+                                                               shear(0.),
+                                                               prm.viscosity);
           }
       }
 
     // Output files.
-    CsvWriter particles_csv(prm.output_directory + "/particles.csv",
+    CsvWriter      particles_csv(prm.output_directory + "/particles.csv",
                             {"step",
-                             "time",
-                             "id",
-                             "x",
-                             "y",
-                             "z",
-                             "ux",
-                             "uy",
-                             "uz",
-                             "omega_x",
-                             "omega_y",
-                             "omega_z",
-                             "radius"},
+                                  "time",
+                                  "id",
+                                  "x",
+                                  "y",
+                                  "z",
+                                  "ux",
+                                  "uy",
+                                  "uz",
+                                  "omega_x",
+                                  "omega_y",
+                                  "omega_z",
+                                  "radius"},
                             root);
-    CsvWriter statistics_csv(
-      prm.output_directory + "/statistics.csv",
-      {"step",           "time",          "dt",
-       "cells",          "dofs",          "uzawa_iterations",
-       "linear_iterations", "rigidity_residual", "min_gap",
-       "active_contacts", "glued_contacts", "wall_seconds",
-       "remeshed",       "contact_iterations"},
-      root);
+    CsvWriter      statistics_csv(prm.output_directory + "/statistics.csv",
+                             {"step",
+                                   "time",
+                                   "dt",
+                                   "cells",
+                                   "dofs",
+                                   "uzawa_iterations",
+                                   "linear_iterations",
+                                   "rigidity_residual",
+                                   "min_gap",
+                                   "active_contacts",
+                                   "glued_contacts",
+                                   "wall_seconds",
+                                   "remeshed",
+                                   "contact_iterations"},
+                             root);
     ParticleOutput particle_output(prm.output_directory,
                                    root && prm.particle_output_interval > 0);
 
@@ -278,7 +280,7 @@ namespace Fidus
       solid.reinit(X, prm.radii, lo, hi);
       {
         TimerOutput::Scope scope(timer, "mesh");
-        double moved = 0;
+        double             moved = 0;
         for (unsigned int i = 0; i < n; ++i)
           {
             double d2 = 0;
@@ -304,8 +306,10 @@ namespace Fidus
       {
         TimerOutput::Scope scope(timer, "fluid");
         boundary.set_shear_rate(shear(t));
-        fluid_stats = solver->solve(
-          solid, exact ? static_cast<const Function<dim> &>(*exact) : boundary);
+        fluid_stats =
+          solver->solve(solid,
+                        exact ? static_cast<const Function<dim> &>(*exact) :
+                                boundary);
         if (!fluid_stats.uzawa_converged)
           std::cerr << "fidus: warning: the Uzawa loop stopped after "
                     << fluid_stats.uzawa_iterations
@@ -315,7 +319,7 @@ namespace Fidus
                     << " (Fluid/Maximum Uzawa iterations)" << std::endl;
       }
       {
-        TimerOutput::Scope scope(timer, "rigid motion");
+        TimerOutput::Scope             scope(timer, "rigid motion");
         const std::vector<RigidMotion> motions =
           compute_rigid_motions(solver->get_dof_handler(),
                                 solver->get_solution(),
@@ -333,13 +337,17 @@ namespace Fidus
       if (n == 0)
         return std::numeric_limits<double>::infinity();
       const double search = n <= 200 ? 1e3 * smallest_side : 4. * a_max;
-      return Contact::ContactProjector::minimum_gap(
-        x, prm.radii, walls, dim, search);
+      return Contact::ContactProjector::minimum_gap(x,
+                                                    prm.radii,
+                                                    walls,
+                                                    dim,
+                                                    search);
     };
 
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
-    auto write_step = [&](const unsigned int step, const double t,
-                          const double dt) {
+    auto         write_step = [&](const unsigned int step,
+                          const double       t,
+                          const double       dt) {
       TimerOutput::Scope scope(timer, "output");
       for (unsigned int i = 0; i < n; ++i)
         particles_csv.write_row({double(step),
@@ -405,20 +413,20 @@ namespace Fidus
       if (step % prm.progress_interval == 0)
         {
           const double elapsed = wall_clock.wall_time();
-          const double eta =
-            t > 0 ? elapsed / t * (prm.end_time - t) : 0.;
+          const double eta = t > 0 ? elapsed / t * (prm.end_time - t) : 0.;
           pcout << "step " << std::setw(6) << step << "  t = " << std::fixed
                 << std::setprecision(4) << t << "  dt = " << std::scientific
-                << std::setprecision(2) << dt << "  gap = "
-                << (std::isfinite(gap) ? gap : 0.) << std::defaultfloat;
+                << std::setprecision(2) << dt
+                << "  gap = " << (std::isfinite(gap) ? gap : 0.)
+                << std::defaultfloat;
           if (fictitious)
             pcout << "  cells " << tria->n_global_active_cells() << "  Uzawa "
                   << fluid_stats.uzawa_iterations << "  FGMRES "
                   << fluid_stats.linear_iterations << "  rigidity "
                   << std::scientific << std::setprecision(1)
                   << fluid_stats.rigidity_residual << std::defaultfloat;
-          pcout << "  contacts " << n_active << "/" << n_glued
-                << "  ETA " << format_time(eta) << std::endl;
+          pcout << "  contacts " << n_active << "/" << n_glued << "  ETA "
+                << format_time(eta) << std::endl;
         }
     };
 
@@ -430,8 +438,8 @@ namespace Fidus
 
     if (exact)
       {
-        const auto errors = solver->compute_errors(*exact, solid, true);
-        const double g    = shear(0.);
+        const auto   errors = solver->compute_errors(*exact, solid, true);
+        const double g      = shear(0.);
         double       werr = 0, uerr = 0;
         for (unsigned int d = 0; d < 3; ++d)
           {
@@ -439,14 +447,15 @@ namespace Fidus
             werr += std::pow(W[0][d] - w_exact, 2);
             uerr += std::pow(U[0][d], 2);
           }
-        summary.u_l2_error        = errors.u_l2;
-        summary.u_h1_error        = errors.u_h1;
-        summary.omega_error       = std::sqrt(werr) / std::abs(0.5 * g);
-        summary.translation_error = std::sqrt(uerr) / std::abs(g * prm.radii[0]);
+        summary.u_l2_error  = errors.u_l2;
+        summary.u_h1_error  = errors.u_h1;
+        summary.omega_error = std::sqrt(werr) / std::abs(0.5 * g);
+        summary.translation_error =
+          std::sqrt(uerr) / std::abs(g * prm.radii[0]);
         pcout << std::scientific << std::setprecision(4)
-              << "exact rigid inclusion: cells " << summary.n_cells
-              << ", dofs " << summary.n_dofs << ", L2 error of u (fluid) "
-              << errors.u_l2 << ", H1 error of u (fluid) " << errors.u_h1
+              << "exact rigid inclusion: cells " << summary.n_cells << ", dofs "
+              << summary.n_dofs << ", L2 error of u (fluid) " << errors.u_l2
+              << ", H1 error of u (fluid) " << errors.u_h1
               << ", relative omega error " << summary.omega_error
               << ", |U|/(g a) " << summary.translation_error
               << std::defaultfloat << std::endl;
@@ -462,17 +471,18 @@ namespace Fidus
           {
             double umax = 0;
             for (const auto &v : U)
-              umax = std::max(umax, std::sqrt(v[0] * v[0] + v[1] * v[1] +
-                                              v[2] * v[2]));
+              umax =
+                std::max(umax,
+                         std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
             const double h = fictitious ? h_finest : a_min;
-            dt = umax > 0 ? std::min(prm.maximum_time_step,
-                                     prm.cfl_number * h / umax) :
-                            prm.maximum_time_step;
+            dt             = umax > 0 ?
+                               std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
+                               prm.maximum_time_step;
           }
         dt = std::min(dt, prm.end_time - t);
 
         // AB2 extrapolation of the hydrodynamic velocities.
-        const double beta = have_history ? dt / (2. * dt_old) : 0.;
+        const double      beta = have_history ? dt / (2. * dt_old) : 0.;
         std::vector<Vec3> w_star(n);
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int d = 0; d < 3; ++d)
@@ -501,8 +511,8 @@ namespace Fidus
           catch (const Contact::ContactError &e)
             {
               throw RunError(std::string(e.what()) + " (at step " +
-                             std::to_string(step + 1) + ", t = " +
-                             std::to_string(t) + ")");
+                             std::to_string(step + 1) +
+                             ", t = " + std::to_string(t) + ")");
             }
         }
 
@@ -518,7 +528,7 @@ namespace Fidus
                 // q <- q + dt/2 (0, w) q, renormalised.
                 auto        &q  = quaternion[i];
                 const double wx = w_star[i][0], wy = w_star[i][1],
-                             wz = w_star[i][2];
+                             wz                = w_star[i][2];
                 const std::array<double, 4> dq = {
                   {-wx * q[1] - wy * q[2] - wz * q[3],
                    wx * q[0] + wy * q[3] - wz * q[2],
@@ -547,8 +557,8 @@ namespace Fidus
             if (X[i][d] - prm.radii[i] < lo[d] - cs.overlap_tolerance ||
                 X[i][d] + prm.radii[i] > hi[d] + cs.overlap_tolerance)
               {
-                const bool        low = X[i][d] - prm.radii[i] < lo[d];
-                const char        axis[3] = {'x', 'y', 'z'};
+                const bool         low     = X[i][d] - prm.radii[i] < lo[d];
+                const char         axis[3] = {'x', 'y', 'z'};
                 std::ostringstream s;
                 s << "particle " << i << " reached the box face " << axis[d]
                   << " = " << (low ? lo[d] : hi[d]) << " at step " << step
@@ -572,11 +582,11 @@ namespace Fidus
         write_step(step, t, dt);
       }
 
-    summary.n_steps    = step;
-    summary.final_time = t;
-    summary.positions  = X;
-    summary.velocities = U;
-    summary.omegas     = W;
+    summary.n_steps      = step;
+    summary.final_time   = t;
+    summary.positions    = X;
+    summary.velocities   = U;
+    summary.omegas       = W;
     summary.wall_seconds = wall_clock.wall_time();
     if (prm.verbosity != Verbosity::quiet)
       timer.print_summary();

@@ -4,10 +4,10 @@
 // 'gluey' they never come closer than 1 - tolerance. The same run on 1 and
 // 2 MPI ranks prints the same positions (files .output and .mpirun=2.output).
 
+#include "../fidus_test.h"
+
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
-
-#include "../fidus_test.h"
 
 using namespace FidusTest;
 
@@ -27,15 +27,14 @@ run(const std::string &model)
       << "  set Initial global refinement = 3\n  set Minimum level = 3\n"
       << "  set Maximum level = 6\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
-  return Fidus::run_simulation(
-    Fidus::read_parameters_from_string(prm.str()));
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 
 int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const double tol = 1e-9 * 0.05 / 0.1; // contact tolerance / (2a)
+  const double            tol  = 1e-9 * 0.05 / 0.1; // contact tolerance / (2a)
   const Fidus::RunSummary none = run("none");
   check_range("none: minimum normalised distance",
               none.min_normalised_distance,

@@ -6,11 +6,10 @@
 // particles return to their start within 1 % of a, inelastic ones do not.
 // The box is wide in x so that the inelastic pair stays inside.
 
-#include <fidus/core/parameters.h>
-#include <fidus/simulation/simulation.h>
-
 #include "../fidus_test.h"
 
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
 #include <fstream>
 #include <sstream>
 
@@ -35,8 +34,7 @@ run(const std::string &model,
       << "subsection Time stepping\n  set End time = " << end_time
       << "\n  set Time step = " << dt << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
-  return Fidus::run_simulation(
-    Fidus::read_parameters_from_string(prm.str()));
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 
 /// Time during which statistics.csv reports a glued contact.
@@ -64,11 +62,11 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const double a = 0.05;
+  const double                             a = 0.05;
   for (const double dt : {0.01, 0.005})
     {
       const std::string tag = " (dt = " + std::to_string(dt).substr(0, 5) + ")";
-      const auto g = run("gluey", "1", 20, dt, "gluey");
+      const auto        g   = run("gluey", "1", 20, dt, "gluey");
       check_range("gluey final offset / 0.02" + tag,
                   std::abs(g.positions[0][1] - g.positions[1][1]) / 0.02,
                   0.98,
@@ -85,17 +83,20 @@ main(int argc, char **argv)
     }
   for (const std::string model : {"gluey", "inelastic"})
     {
-      const auto s = run(model, "t < 15 ? 1 : -1", 30, 0.01, model + "_rev");
+      const auto   s = run(model, "t < 15 ? 1 : -1", 30, 0.01, model + "_rev");
       const double x0[2][2] = {{0.451, 0.51}, {0.549, 0.49}};
       double       err      = 0;
       for (unsigned int i = 0; i < 2; ++i)
-        err = std::max(err, std::hypot(s.positions[i][0] - x0[i][0],
-                                       s.positions[i][1] - x0[i][1]));
+        err = std::max(err,
+                       std::hypot(s.positions[i][0] - x0[i][0],
+                                  s.positions[i][1] - x0[i][1]));
       if (model == "gluey")
         check_range("gluey reversibility: return error / a", err / a, 0., 0.01);
       else
-        check_range("inelastic irreversibility: return error / a", err / a,
-                    0.1, 100.);
+        check_range("inelastic irreversibility: return error / a",
+                    err / a,
+                    0.1,
+                    100.);
     }
   return exit_code();
 }

@@ -3,11 +3,10 @@
 // maximum refinement level increases, and omega is within 0.5 % of -g/2 at
 // the finest level. The observed orders go to measured_values.txt.
 
-#include <fidus/core/parameters.h>
-#include <fidus/simulation/simulation.h>
-
 #include "../fidus_test.h"
 
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
 #include <vector>
 
 using namespace FidusTest;
@@ -24,17 +23,16 @@ run(const unsigned int dim, const unsigned int level)
       << "  set Boundary condition = exact rigid inclusion\n"
       << "end\n"
       << "subsection Fluid\n  set Rigidity tolerance = 5e-4\nend\n"
-      << "subsection Particles\n  set Radius = "
-      << (dim == 2 ? "0.15" : "0.2") << "\n  set Positions = "
-      << (dim == 2 ? "0.5, 0.5" : "0.5, 0.5, 0.5") << "\nend\n"
+      << "subsection Particles\n  set Radius = " << (dim == 2 ? "0.15" : "0.2")
+      << "\n  set Positions = " << (dim == 2 ? "0.5, 0.5" : "0.5, 0.5, 0.5")
+      << "\nend\n"
       << "subsection Time stepping\n  set End time = 0\nend\n"
       << "subsection Mesh refinement\n"
       << "  set Initial global refinement = 2\n"
       << "  set Minimum level = 2\n"
       << "  set Maximum level = " << level << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
-  return Fidus::run_simulation(
-    Fidus::read_parameters_from_string(prm.str()));
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 
 void
@@ -58,7 +56,9 @@ study(const unsigned int dim, const std::vector<unsigned int> &levels)
               s.back().omega_error,
               0.,
               0.005);
-  check_range(name + " finest: |U| / (g a)", s.back().translation_error, 0.,
+  check_range(name + " finest: |U| / (g a)",
+              s.back().translation_error,
+              0.,
               0.005);
 }
 

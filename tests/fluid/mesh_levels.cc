@@ -6,14 +6,12 @@
 // of slack for the 2:1 balance), and a close pair gets its gap refined to
 // the maximum level.
 
-#include <deal.II/distributed/tria.h>
+#include "../fidus_test.h"
 
+#include <deal.II/distributed/tria.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/mesh/mesh_refiner.h>
 #include <fidus/particles/solid_indicator.h>
-
-#include "../fidus_test.h"
-
 #include <map>
 
 using namespace dealii;
@@ -59,9 +57,13 @@ check(const std::vector<std::array<double, 3>> &positions,
   far_cells_not_coarsest =
     Utilities::MPI::sum(far_cells_not_coarsest, MPI_COMM_WORLD);
   check_range(name + ": cells crossed by a surface not on the finest level",
-              surface_cells_not_finest, 0, 0);
+              surface_cells_not_finest,
+              0,
+              0);
   check_range(name + ": cells finer than the grading allows",
-              far_cells_not_coarsest, 0, 0);
+              far_cells_not_coarsest,
+              0,
+              0);
 
   if (positions.size() == 2)
     {
@@ -75,7 +77,9 @@ check(const std::vector<std::array<double, 3>> &positions,
           found = cell->level() == max_level ? 1 : 2;
       found = Utilities::MPI::max(found, MPI_COMM_WORLD);
       check_range(name + ": gap midpoint on the finest level (1 = yes)",
-                  found, 1, 1);
+                  found,
+                  1,
+                  1);
     }
 }
 

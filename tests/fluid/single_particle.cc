@@ -4,10 +4,10 @@
 // does not move across the streamlines (U_y = 0) and follows the flow,
 // U_x ~ g (y - 0.5). 2D and 3D, rigidity residual below its tolerance.
 
+#include "../fidus_test.h"
+
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
-
-#include "../fidus_test.h"
 
 using namespace FidusTest;
 
@@ -30,8 +30,7 @@ run(const unsigned int dim, const std::string &position, unsigned int level)
       << "  set Minimum level = " << (dim == 2 ? 3 : 2) << "\n"
       << "  set Maximum level = " << level << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
-  return Fidus::run_simulation(
-    Fidus::read_parameters_from_string(prm.str()));
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 
 void
@@ -51,11 +50,12 @@ check(const std::string &name, const Fidus::RunSummary &s, const double y)
   else
     {
       check_range(name + ": |U_y| / (g a)", std::abs(U[1]) / (g * a), 0., 0.01);
-      check_range(name + ": U_x / (g (y - 0.5))", U[0] / (g * (y - 0.5)),
-                  0.95, 1.05);
+      check_range(name + ": U_x / (g (y - 0.5))",
+                  U[0] / (g * (y - 0.5)),
+                  0.95,
+                  1.05);
     }
-  check_range(name + ": rigidity residual", s.max_rigidity_residual, 0.,
-              2e-4);
+  check_range(name + ": rigidity residual", s.max_rigidity_residual, 0., 2e-4);
 }
 
 int

@@ -7,16 +7,14 @@
 //     under uniform refinement.
 // The convergence table goes to measured_values.txt.
 
+#include "../fidus_test.h"
+
 #include <deal.II/base/function.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/vector.h>
-
 #include <fidus/fluid/stokes_solver.h>
 #include <fidus/particles/solid_indicator.h>
-
-#include "../fidus_test.h"
-
 #include <fstream>
 
 using namespace dealii;
@@ -49,15 +47,33 @@ public:
 namespace MMS
 {
   const double pi = numbers::PI;
-  double S(double x) { return std::pow(std::sin(pi * x), 2); }
-  double S1(double x) { return pi * std::sin(2 * pi * x); }
-  double S2(double x) { return 2 * pi * pi * std::cos(2 * pi * x); }
-  double S3(double x) { return -4 * pi * pi * pi * std::sin(2 * pi * x); }
-  double eta(const Point<2> &p)
+  double
+  S(double x)
+  {
+    return std::pow(std::sin(pi * x), 2);
+  }
+  double
+  S1(double x)
+  {
+    return pi * std::sin(2 * pi * x);
+  }
+  double
+  S2(double x)
+  {
+    return 2 * pi * pi * std::cos(2 * pi * x);
+  }
+  double
+  S3(double x)
+  {
+    return -4 * pi * pi * pi * std::sin(2 * pi * x);
+  }
+  double
+  eta(const Point<2> &p)
   {
     return 1. + 4.5 * (1. + std::tanh((p[0] + p[1] - 1.) / 0.1));
   }
-  Tensor<1, 2> grad_eta(const Point<2> &p)
+  Tensor<1, 2>
+  grad_eta(const Point<2> &p)
   {
     const double c = std::cosh((p[0] + p[1] - 1.) / 0.1);
     const double d = 4.5 / 0.1 / (c * c);
@@ -108,18 +124,17 @@ public:
   vector_value(const Point<2> &p, Vector<double> &f) const override
   {
     using namespace MMS;
-    const double x = p[0], y = p[1];
-    const double lap[2] = {S2(x) * S1(y) + S(x) * S3(y),
-                           -S3(x) * S(y) - S1(x) * S2(y)};
+    const double       x = p[0], y = p[1];
+    const double       lap[2] = {S2(x) * S1(y) + S(x) * S3(y),
+                                 -S3(x) * S(y) - S1(x) * S2(y)};
     MmsSolution        u;
     const Tensor<1, 2> gu0 = u.gradient(p, 0), gu1 = u.gradient(p, 1),
-                       gp = u.gradient(p, 2);
-    const double e[2][2] = {{gu0[0], 0.5 * (gu0[1] + gu1[0])},
-                            {0.5 * (gu0[1] + gu1[0]), gu1[1]}};
-    const Tensor<1, 2> ge = grad_eta(p);
+                       gp      = u.gradient(p, 2);
+    const double       e[2][2] = {{gu0[0], 0.5 * (gu0[1] + gu1[0])},
+                                  {0.5 * (gu0[1] + gu1[0]), gu1[1]}};
+    const Tensor<1, 2> ge      = grad_eta(p);
     for (unsigned int d = 0; d < 2; ++d)
-      f[d] = -eta(p) * lap[d] - 2 * (e[d][0] * ge[0] + e[d][1] * ge[1]) +
-             gp[d];
+      f[d] = -eta(p) * lap[d] - 2 * (e[d][0] * ge[0] + e[d][1] * ge[1]) + gp[d];
     f[2] = 0;
   }
 };
@@ -151,7 +166,7 @@ linear_shear()
     }
   typename Fidus::StokesSolver<dim>::Settings settings;
   settings.linear_tolerance = 1e-14;
-  Fidus::StokesSolver<dim> solver(tria, settings);
+  Fidus::StokesSolver<dim>     solver(tria, settings);
   std::set<types::boundary_id> ids;
   for (unsigned int b = 0; b < 2 * dim; ++b)
     ids.insert(b);
@@ -162,11 +177,17 @@ linear_shear()
   solver.solve(none, exact);
   const auto e = solver.compute_errors(exact, none, false);
   check_range(std::to_string(dim) + "D linear shear: L2 error of u",
-              e.u_l2, 0., 1e-10);
+              e.u_l2,
+              0.,
+              1e-10);
   check_range(std::to_string(dim) + "D linear shear: H1 error of u",
-              e.u_h1, 0., 1e-9);
+              e.u_h1,
+              0.,
+              1e-9);
   check_range(std::to_string(dim) + "D linear shear: L2 error of p",
-              e.p_l2, 0., 1e-9);
+              e.p_l2,
+              0.,
+              1e-9);
 }
 
 void
@@ -197,11 +218,17 @@ manufactured()
     }
   const unsigned int n = errors.size();
   check_range("MMS: rate of |u - u_h|_L2",
-              std::log2(errors[n - 2].u_l2 / errors[n - 1].u_l2), 2.7, 3.5);
+              std::log2(errors[n - 2].u_l2 / errors[n - 1].u_l2),
+              2.7,
+              3.5);
   check_range("MMS: rate of |u - u_h|_H1",
-              std::log2(errors[n - 2].u_h1 / errors[n - 1].u_h1), 1.8, 2.5);
+              std::log2(errors[n - 2].u_h1 / errors[n - 1].u_h1),
+              1.8,
+              2.5);
   check_range("MMS: rate of |p - p_h|_L2",
-              std::log2(errors[n - 2].p_l2 / errors[n - 1].p_l2), 1.7, 3.5);
+              std::log2(errors[n - 2].p_l2 / errors[n - 1].p_l2),
+              1.7,
+              3.5);
 }
 
 int

@@ -86,16 +86,16 @@ namespace Fidus
     std::string           shear_rate         = "1";
 
     // Fluid
-    FluidModel   fluid_model           = FluidModel::fictitious_domain;
-    double       viscosity             = 1.;
-    double       penalty_factor        = 1e3;
-    unsigned int velocity_degree       = 2;
-    double       rigidity_tolerance    = 1e-6;
-    unsigned int max_uzawa_iterations  = 50;
-    bool         reuse_multiplier      = true;
-    double       linear_tolerance      = 1e-8;
-    unsigned int max_cheap_iterations  = 200;
-    unsigned int max_linear_iterations = 1000;
+    FluidModel   fluid_model               = FluidModel::fictitious_domain;
+    double       viscosity                 = 1.;
+    double       penalty_factor            = 1e3;
+    unsigned int velocity_degree           = 2;
+    double       rigidity_tolerance        = 1e-6;
+    unsigned int max_uzawa_iterations      = 50;
+    bool         reuse_multiplier          = true;
+    double       linear_tolerance          = 1e-8;
+    unsigned int max_cheap_iterations      = 200;
+    unsigned int max_linear_iterations     = 1000;
     double       amg_aggregation_threshold = 0.02;
     unsigned int amg_smoother_sweeps       = 2;
 

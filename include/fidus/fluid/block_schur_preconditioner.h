@@ -31,9 +31,9 @@ namespace Fidus
   public:
     /// @p stokes: the system matrix; @p mass: the 1/eta pressure mass;
     /// @p expensive selects inner solves.
-    BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix &stokes,
-                             const TrilinosWrappers::SparseMatrix      &mass,
-                             const TrilinosWrappers::PreconditionAMG   &amg,
+    BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix  &stokes,
+                             const TrilinosWrappers::SparseMatrix       &mass,
+                             const TrilinosWrappers::PreconditionAMG    &amg,
                              const TrilinosWrappers::PreconditionJacobi &jacobi,
                              const bool expensive)
       : stokes(stokes)

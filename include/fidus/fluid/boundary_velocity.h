@@ -2,7 +2,6 @@
 #define fidus_fluid_boundary_velocity_h
 
 #include <deal.II/base/function.h>
-
 #include <fidus/core/parameters.h>
 
 namespace Fidus

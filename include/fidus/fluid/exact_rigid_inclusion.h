@@ -42,8 +42,7 @@ namespace Fidus
     /// norms only, where its O(1e-12) error is far below the discretisation
     /// error.
     Tensor<1, dim>
-    gradient(const Point<dim>  &p,
-             const unsigned int component) const override;
+    gradient(const Point<dim> &p, const unsigned int component) const override;
 
   private:
     const Point<dim> center;

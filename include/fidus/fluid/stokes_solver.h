@@ -10,9 +10,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
-
 #include <fidus/particles/solid_indicator.h>
-
 #include <memory>
 #include <set>
 #include <vector>
@@ -44,19 +42,19 @@ namespace Fidus
     /// Solver settings (see Parameters for their meaning).
     struct Settings
     {
-      unsigned int degree                = 2;
-      double       viscosity             = 1.;
-      double       penalty_factor        = 1e3;
-      double       rigidity_tolerance    = 1e-6;
-      unsigned int max_uzawa_iterations  = 50;
-      double       linear_tolerance      = 1e-8;
-      unsigned int max_cheap_iterations  = 200;
-      unsigned int max_linear_iterations = 1000;
+      unsigned int degree                    = 2;
+      double       viscosity                 = 1.;
+      double       penalty_factor            = 1e3;
+      double       rigidity_tolerance        = 1e-6;
+      unsigned int max_uzawa_iterations      = 50;
+      double       linear_tolerance          = 1e-8;
+      unsigned int max_cheap_iterations      = 200;
+      unsigned int max_linear_iterations     = 1000;
       double       amg_aggregation_threshold = 0.02;
       unsigned int amg_smoother_sweeps       = 2;
       /// Krylov vectors kept by FGMRES before a restart.
-      unsigned int gmres_restart = 200;
-      bool         reuse_multiplier          = true;
+      unsigned int gmres_restart    = 200;
+      bool         reuse_multiplier = true;
       /// Accelerate the Uzawa loop (Anderson mixing of depth 5 in the energy
       /// inner product). Off by default: on cut-cell slivers it stagnates at
       /// the same residual as plain Uzawa (see doc/fluid.md).
@@ -96,7 +94,7 @@ namespace Fidus
      * periodic; @p dirichlet_ids: boundary ids with imposed velocity.
      */
     void
-    setup_dofs(const std::vector<unsigned int>   &periodic_directions,
+    setup_dofs(const std::vector<unsigned int>    &periodic_directions,
                const std::set<types::boundary_id> &dirichlet_ids);
 
     /**

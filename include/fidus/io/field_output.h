@@ -3,7 +3,6 @@
 
 #include <fidus/fluid/stokes_solver.h>
 #include <fidus/particles/solid_indicator.h>
-
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,7 +33,7 @@ namespace Fidus
           const double               time);
 
   private:
-    std::string                                  directory;
+    std::string                                 directory;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace Fidus

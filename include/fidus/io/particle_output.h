@@ -35,8 +35,8 @@ namespace Fidus
           const std::vector<unsigned int>          &glued);
 
   private:
-    std::string                                  directory;
-    bool                                         active;
+    std::string                                 directory;
+    bool                                        active;
     std::vector<std::pair<double, std::string>> records;
   };
 } // namespace Fidus

@@ -3,7 +3,6 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/distributed/tria.h>
-
 #include <vector>
 
 namespace Fidus
@@ -22,8 +21,8 @@ namespace Fidus
   create_box_mesh(parallel::distributed::Triangulation<dim> &triangulation,
                   const Point<dim>                          &lower_left,
                   const Point<dim>                          &upper_right,
-                  const std::vector<unsigned int>           &periodic_directions,
-                  const unsigned int                         global_refinements);
+                  const std::vector<unsigned int> &periodic_directions,
+                  const unsigned int               global_refinements);
 } // namespace Fidus
 
 #endif

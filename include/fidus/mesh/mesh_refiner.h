@@ -2,7 +2,6 @@
 #define fidus_mesh_mesh_refiner_h
 
 #include <deal.II/distributed/tria.h>
-
 #include <fidus/particles/solid_indicator.h>
 
 namespace Fidus
@@ -27,10 +26,10 @@ namespace Fidus
     /// Refinement settings.
     struct Settings
     {
-      unsigned int minimum_level  = 3;
-      unsigned int maximum_level  = 8;
-      double       band           = 2.;
-      double       gap_distance   = 0.5; ///< relative to the smaller radius
+      unsigned int minimum_level = 3;
+      unsigned int maximum_level = 8;
+      double       band          = 2.;
+      double       gap_distance  = 0.5; ///< relative to the smaller radius
     };
 
     explicit MeshRefiner(const Settings &settings)

@@ -1,13 +1,11 @@
 #ifndef fidus_particles_rigid_motion_h
 #define fidus_particles_rigid_motion_h
 
+#include <array>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
-
 #include <fidus/particles/solid_indicator.h>
-
-#include <array>
 #include <vector>
 
 namespace Fidus

@@ -1,9 +1,8 @@
 #ifndef fidus_particles_solid_indicator_h
 #define fidus_particles_solid_indicator_h
 
-#include <deal.II/base/point.h>
-
 #include <array>
+#include <deal.II/base/point.h>
 #include <vector>
 
 namespace Fidus

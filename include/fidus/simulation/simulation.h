@@ -1,9 +1,8 @@
 #ifndef fidus_simulation_simulation_h
 #define fidus_simulation_simulation_h
 
-#include <fidus/core/parameters.h>
-
 #include <array>
+#include <fidus/core/parameters.h>
 #include <string>
 #include <vector>
 
@@ -12,7 +11,7 @@ namespace Fidus
   /// Summary of a run, for tests and benchmarks.
   struct RunSummary
   {
-    unsigned int n_steps = 0;
+    unsigned int n_steps    = 0;
     double       final_time = 0.;
     /// State after the last step.
     std::vector<std::array<double, 3>> positions, velocities, omegas;
