@@ -6,8 +6,8 @@
 # Usage: contrib/benchmarks/rigid_inclusion.sh [2|3|both] [max 2D level] [max 3D level]
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
-"$top/contrib/build.sh" fidus >/dev/null
-fidus="$top/build-release/fidus"
+[ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
+fidus="${FIDUS:-$top/build-release/fidus}"
 which="${1:-both}"; max2="${2:-8}"; max3="${3:-5}"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
 

@@ -96,34 +96,19 @@ namespace Fidus
 
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
-    constraints.clear();
-    constraints.reinit(locally_relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    for (const unsigned int d : periodic_directions)
-      DoFTools::make_periodicity_constraints(dof_handler,
-                                             2 * d,
-                                             2 * d + 1,
-                                             d,
-                                             constraints);
-    const FEValuesExtractors::Vector velocities(0);
-    for (const types::boundary_id id : dirichlet_ids)
-      VectorTools::interpolate_boundary_values(dof_handler,
-                                               id,
-                                               Functions::ZeroFunction<dim>(
-                                                 dim + 1),
-                                               constraints,
-                                               fe.component_mask(velocities));
-    constraints.close();
+    make_constraints(Functions::ZeroFunction<dim>(dim + 1));
 
-    const unsigned int this_rank =
-      Utilities::MPI::this_mpi_process(mpi_communicator);
-    {
-      system_matrix.clear();
+    // The system couples everything but pressure with pressure; the
+    // preconditioner matrix holds only the pressure mass.
+    const auto make_matrix = [&](TrilinosWrappers::BlockSparseMatrix &matrix,
+                                 const bool pressure_only) {
+      matrix.clear();
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
       for (unsigned int c = 0; c < dim + 1; ++c)
         for (unsigned int d = 0; d < dim + 1; ++d)
-          coupling[c][d] =
-            (c == dim && d == dim) ? DoFTools::none : DoFTools::always;
+          coupling[c][d] = ((c == dim && d == dim) == pressure_only) ?
+                             DoFTools::always :
+                             DoFTools::none;
       TrilinosWrappers::BlockSparsityPattern sp(owned_partitioning,
                                                 owned_partitioning,
                                                 relevant_partitioning,
@@ -133,30 +118,13 @@ namespace Fidus
                                       sp,
                                       constraints,
                                       false,
-                                      this_rank);
+                                      Utilities::MPI::this_mpi_process(
+                                        mpi_communicator));
       sp.compress();
-      system_matrix.reinit(sp);
-    }
-    {
-      preconditioner_matrix.clear();
-      Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
-      for (unsigned int c = 0; c < dim + 1; ++c)
-        for (unsigned int d = 0; d < dim + 1; ++d)
-          coupling[c][d] =
-            (c == dim && d == dim) ? DoFTools::always : DoFTools::none;
-      TrilinosWrappers::BlockSparsityPattern sp(owned_partitioning,
-                                                owned_partitioning,
-                                                relevant_partitioning,
-                                                mpi_communicator);
-      DoFTools::make_sparsity_pattern(dof_handler,
-                                      coupling,
-                                      sp,
-                                      constraints,
-                                      false,
-                                      this_rank);
-      sp.compress();
-      preconditioner_matrix.reinit(sp);
-    }
+      matrix.reinit(sp);
+    };
+    make_matrix(system_matrix, false);
+    make_matrix(preconditioner_matrix, true);
 
     base_rhs.reinit(owned_partitioning,
                     relevant_partitioning,
@@ -176,6 +144,31 @@ namespace Fidus
                       mpi_communicator);
     solid_mask.reinit(owned_partitioning, mpi_communicator);
     multiplier_valid = false;
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::make_constraints(const Function<dim> &boundary_velocity)
+  {
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    for (const unsigned int d : periodic_directions)
+      DoFTools::make_periodicity_constraints(dof_handler,
+                                             2 * d,
+                                             2 * d + 1,
+                                             d,
+                                             constraints);
+    const FEValuesExtractors::Vector velocities(0);
+    for (const types::boundary_id id : dirichlet_ids)
+      VectorTools::interpolate_boundary_values(dof_handler,
+                                               id,
+                                               boundary_velocity,
+                                               constraints,
+                                               fe.component_mask(velocities));
+    constraints.close();
   }
 
 
@@ -535,23 +528,7 @@ namespace Fidus
 
     // Boundary values change with the shear rate: rebuild the constraints
     // (same constrained set as in setup_dofs, new inhomogeneities).
-    constraints.clear();
-    constraints.reinit(locally_relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    for (const unsigned int d : periodic_directions)
-      DoFTools::make_periodicity_constraints(dof_handler,
-                                             2 * d,
-                                             2 * d + 1,
-                                             d,
-                                             constraints);
-    const FEValuesExtractors::Vector velocities(0);
-    for (const types::boundary_id id : dirichlet_ids)
-      VectorTools::interpolate_boundary_values(dof_handler,
-                                               id,
-                                               boundary_velocity,
-                                               constraints,
-                                               fe.component_mask(velocities));
-    constraints.close();
+    make_constraints(boundary_velocity);
 
     assemble_system(solid, body_force, fluid_viscosity);
     stats.assemble_seconds = timer.wall_time();

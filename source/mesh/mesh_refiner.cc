@@ -92,13 +92,12 @@ namespace Fidus
         const unsigned int n_before = triangulation.n_global_active_cells();
         triangulation.prepare_coarsening_and_refinement();
         triangulation.execute_coarsening_and_refinement();
-        if (triangulation.n_global_active_cells() == n_before)
-          {
-            // Flags were only coarsenings that the 2:1 balance or sibling
-            // rule prevented: the mesh is as adapted as it gets.
-            break;
-          }
+        // Count the pass as a change even if the number of cells stayed the
+        // same: refinements and coarsenings may balance, and the DoFs must
+        // then be distributed anew.
         ++changed_passes;
+        if (triangulation.n_global_active_cells() == n_before)
+          break;
       }
     return changed_passes;
   }

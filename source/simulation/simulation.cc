@@ -79,15 +79,41 @@ namespace Fidus
   RunSummary
   Simulation<dim>::run()
   {
+    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    ConditionalOStream pcout(std::cout,
+                             root && prm.verbosity != Verbosity::quiet);
+    // The timer is destroyed before an error propagates, so that it neither
+    // communicates nor prints while the run stops.
+    auto timer = std::make_unique<TimerOutput>(MPI_COMM_WORLD,
+                                               pcout,
+                                               TimerOutput::never,
+                                               TimerOutput::wall_times);
+    try
+      {
+        const RunSummary summary = run_steps(*timer);
+        if (prm.verbosity != Verbosity::quiet)
+          timer->print_summary();
+        return summary;
+      }
+    catch (...)
+      {
+        timer.reset();
+        throw;
+      }
+  }
+
+
+
+  template <int dim>
+  RunSummary
+  Simulation<dim>::run_steps(TimerOutput &timer)
+  {
     const MPI_Comm     comm = MPI_COMM_WORLD;
     const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
     const bool         root = rank == 0;
     ConditionalOStream pcout(std::cout,
                              root && prm.verbosity != Verbosity::quiet);
-    ConditionalOStream vout(std::cout,
-                            root && prm.verbosity == Verbosity::verbose);
     Timer              wall_clock;
-    TimerOutput timer(comm, pcout, TimerOutput::never, TimerOutput::wall_times);
 
     if (root)
       std::filesystem::create_directories(prm.output_directory);
@@ -588,8 +614,6 @@ namespace Fidus
     summary.velocities   = U;
     summary.omegas       = W;
     summary.wall_seconds = wall_clock.wall_time();
-    if (prm.verbosity != Verbosity::quiet)
-      timer.print_summary();
     return summary;
   }
 

@@ -98,5 +98,16 @@ if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,
    && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds"; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: output files of a good run"; fi
 
+# A particle carried out through an outflow face stops the run with a
+# diagnostic (exit status 2), after the rows of the steps before.
+{ base | sed 's/0.451, 0.51; 0.549, 0.49/0.9, 0.9/' | sed 's/End time = 0/End time = 2/';
+  printf 'subsection Fluid\n  set Model = undisturbed shear\nend\n'; } > leave.prm
+rm -rf "$work/out"
+"$fidus" leave.prm > /dev/null 2> stderr.txt
+status=$?
+if [ $status -eq 2 ] && grep -q "particle 0 reached the box face x = 1.*in/outflow face" stderr.txt \
+   && [ "$(tail -1 out/statistics.csv | cut -d, -f1)" -ge 10 ]; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: leaving the box (status $status)"; cat stderr.txt; fi
+
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]

@@ -165,6 +165,9 @@ namespace Fidus
     reset_multiplier();
 
   private:
+    /// Hanging nodes, periodicity and the boundary velocity.
+    void
+    make_constraints(const Function<dim> &boundary_velocity);
     void
     assemble_system(const SolidIndicator<dim> &solid,
                     const Function<dim>       *body_force,

@@ -3,6 +3,11 @@
 
 #include <array>
 #include <fidus/core/parameters.h>
+
+namespace dealii
+{
+  class TimerOutput;
+}
 #include <string>
 #include <vector>
 
@@ -54,6 +59,10 @@ namespace Fidus
     run();
 
   private:
+    /// The time loop proper; @p timer collects the stage timings.
+    RunSummary
+    run_steps(dealii::TimerOutput &timer);
+
     const Parameters &prm;
   };
 
