@@ -265,7 +265,7 @@ namespace Fidus
                           "FGMRES stop: residual below this value times the "
                           "norm of the right-hand side, in (0, 1).");
         prm.declare_entry("Maximum cheap iterations",
-                          "200",
+                          "1000",
                           Patterns::Integer(0, 100000),
                           "FGMRES iterations with the cheap preconditioner "
                           "(one AMG V-cycle per block) before switching to "
