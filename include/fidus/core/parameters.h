@@ -94,7 +94,7 @@ namespace Fidus
     unsigned int max_uzawa_iterations      = 50;
     bool         reuse_multiplier          = true;
     double       linear_tolerance          = 1e-8;
-    unsigned int max_cheap_iterations      = 200;
+    unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;
     double       amg_aggregation_threshold = 0.02;
     unsigned int amg_smoother_sweeps       = 2;

@@ -48,7 +48,7 @@ namespace Fidus
       double       rigidity_tolerance        = 1e-6;
       unsigned int max_uzawa_iterations      = 50;
       double       linear_tolerance          = 1e-8;
-      unsigned int max_cheap_iterations      = 200;
+      unsigned int max_cheap_iterations      = 1000;
       unsigned int max_linear_iterations     = 1000;
       double       amg_aggregation_threshold = 0.02;
       unsigned int amg_smoother_sweeps       = 2;
