@@ -27,6 +27,17 @@ namespace FidusTest
     return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   }
 
+  /// Send the program's warnings (std::cerr) to warnings.txt in the test's
+  /// folder: they carry solver residuals whose last digits vary between
+  /// machines, so they must not be part of the compared output. Tests that
+  /// care about a warning check the counters of RunSummary instead.
+  inline void
+  redirect_warnings()
+  {
+    static std::ofstream file("warnings.txt");
+    std::cerr.rdbuf(file.rdbuf());
+  }
+
   /// Check lo <= value <= hi. Stdout (compared with the .output file) gets
   /// only the verdict; the value itself, not stable to the last digit across
   /// machines, goes to the file measured_values.txt in the test's folder.

@@ -30,6 +30,14 @@ namespace Fidus::Contact
 
 
 
+  void
+  ContactDriver::set_periodicity(const std::array<double, 3> &periods)
+  {
+    contact.set_periodicity(periods);
+  }
+
+
+
   ProjectionStatistics
   ContactDriver::step(const double dt)
   {
@@ -59,6 +67,7 @@ namespace Fidus::Contact
                                          a,
                                          walls,
                                          contact.get_settings().dimension,
-                                         search_distance);
+                                         search_distance,
+                                         contact.get_periodicity());
   }
 } // namespace Fidus::Contact

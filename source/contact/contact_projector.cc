@@ -26,6 +26,79 @@ namespace Fidus::Contact
       s << ')';
       return s.str();
     }
+
+    /// "x (direction 0)" etc., for messages about periodic directions.
+    std::string
+    direction_name(const unsigned int d)
+    {
+      const char *names[] = {"x", "y", "z"};
+      return std::string(d < 3 ? names[d] : "?") + " (direction " +
+             std::to_string(d) + ")";
+    }
+
+    /**
+     * Throw unless every period is larger than 2 (2 a_max + d_a) (d_a = 0
+     * for minimum_gap()): a pair is then within reach through at most one
+     * of its images. The message gives the direction, the period and the
+     * requirement.
+     */
+    void
+    require_unambiguous_image(const std::array<double, 3> &periods,
+                              const unsigned int           dim,
+                              const double                 a_max,
+                              const double                 d_a,
+                              const std::string           &where)
+    {
+      for (unsigned d = 0; d < dim; ++d)
+        {
+          const double required = 2. * (2. * a_max + d_a);
+          if (periods[d] > 0. && !(periods[d] > required))
+            {
+              std::ostringstream s;
+              s.precision(6);
+              s << where << "the period " << periods[d]
+                << " of the periodic direction " << direction_name(d)
+                << " is too small: it must be larger than 2 (2 a_max + d_a) = "
+                << required << " (largest radius a_max = " << a_max
+                << ", alert distance d_a = " << d_a
+                << "), else a pair can be within reach through two of its "
+                   "periodic images and the minimum image is ambiguous";
+              throw ContactError(s.str());
+            }
+        }
+    }
+
+    /**
+     * The checks of set_periodicity(): periods >= 0 and finite, none in a
+     * direction beyond @p dim, no wall normal to a periodic direction.
+     */
+    void
+    check_periodicity(const std::array<double, 3> &periods,
+                      const unsigned int           dim,
+                      const std::vector<Wall>     &walls)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          if (!(periods[d] >= 0.) || !std::isfinite(periods[d]))
+            {
+              std::ostringstream s;
+              s << "the period of direction " << direction_name(d) << " is "
+                << periods[d]
+                << ": it must be > 0 (periodic) or 0 (not periodic)";
+              throw ContactError(s.str());
+            }
+          if (d >= dim && periods[d] != 0.)
+            throw ContactError(
+              "a period is given for direction " + direction_name(d) +
+              ", which does not exist in " + std::to_string(dim) + "D");
+          if (periods[d] > 0.)
+            for (std::size_t w = 0; w < walls.size(); ++w)
+              if (walls[w].axis == d)
+                throw ContactError("direction " + direction_name(d) +
+                                   " cannot be periodic: wall " +
+                                   std::to_string(w) + " is normal to it");
+        }
+    }
   } // namespace
 
 
@@ -77,6 +150,10 @@ namespace Fidus::Contact
             format_vector(wall.velocity, settings.dimension) +
             " has a normal component: a face with in- or outflow is not a "
             "wall");
+        if (get_periodicity()[wall.axis] > 0.)
+          throw ContactError("wall " + std::to_string(w) + ": axis " +
+                             std::to_string(wall.axis) +
+                             " is a periodic direction, which has no walls");
       }
     const bool changed =
       new_walls.size() != walls.size() ||
@@ -97,6 +174,27 @@ namespace Fidus::Contact
             kept.push_back(e);
         glue.rebuild(kept);
       }
+  }
+
+
+
+  void
+  ContactProjector::set_periodicity(const std::array<double, 3> &periods)
+  {
+    check_periodicity(periods, settings.dimension, walls);
+    search.set_periodicity(periods);
+  }
+
+
+
+  void
+  ContactProjector::check_periods(const double a_max, const double d_a) const
+  {
+    require_unambiguous_image(get_periodicity(),
+                              settings.dimension,
+                              a_max,
+                              d_a,
+                              "");
   }
 
 
@@ -223,13 +321,11 @@ namespace Fidus::Contact
     };
 
     auto add_pair = [&](const std::uint32_t i, const std::uint32_t j) {
-      Vec3   e{{0., 0., 0.}};
+      // Minimum-image separation (plain X_j - X_i without periodicity).
+      Vec3   e  = search.separation(positions[i], positions[j]);
       double r2 = 0.;
       for (unsigned d = 0; d < dim; ++d)
-        {
-          e[d] = positions[j][d] - positions[i][d];
-          r2 += e[d] * e[d];
-        }
+        r2 += e[d] * e[d];
       const double r   = std::sqrt(r2);
       const double gap = r - radii[i] - radii[j];
       min_gap          = std::min(min_gap, gap);
@@ -336,9 +432,10 @@ namespace Fidus::Contact
     // Bodies: particles, then walls (zero inverse weight, own velocity).
     u_star.assign(n + walls.size(), Vec3{{0., 0., 0.}});
     inv_w.assign(n + walls.size(), 0.);
-    double u_max = 0.;
+    double u_max = 0., a_max = 0.;
     for (std::uint32_t i = 0; i < n; ++i)
       {
+        a_max    = std::max(a_max, radii[i]);
         double s = 0.;
         for (unsigned d = 0; d < dim; ++d)
           {
@@ -354,6 +451,7 @@ namespace Fidus::Contact
 
     const double factor = std::max(2., settings.alert_factor);
     double       d_a = std::max(settings.alert_distance, factor * dt * u_max);
+    check_periods(a_max, d_a);
 
     ConstraintSystem::Result result;
     while (true)
@@ -388,6 +486,9 @@ namespace Fidus::Contact
           break;
         d_a = factor * dt * u_corrected_max;
         ++statistics.n_search_repeats;
+        // Before the glue state is touched, so that a throw leaves it as it
+        // was.
+        check_periods(a_max, d_a);
 
         // Warm start the repeated solve with what was just computed.
         std::vector<GlueState::Entry> entries;
@@ -460,27 +561,36 @@ namespace Fidus::Contact
 
 
   double
-  ContactProjector::minimum_gap(const std::vector<Vec3>   &positions,
-                                const std::vector<double> &radii,
-                                const std::vector<Wall>   &walls,
-                                const unsigned int         dimension,
-                                const double               search_distance)
+  ContactProjector::minimum_gap(const std::vector<Vec3>     &positions,
+                                const std::vector<double>   &radii,
+                                const std::vector<Wall>     &walls,
+                                const unsigned int           dimension,
+                                const double                 search_distance,
+                                const std::array<double, 3> &periods)
   {
     if (radii.size() != positions.size())
       throw ContactError("minimum_gap: size mismatch between positions and "
                          "radii");
+    check_periodicity(periods, dimension, walls);
+    double a_max = 0.;
+    for (const double a : radii)
+      a_max = std::max(a_max, a);
+    // Only overlaps need an unambiguous image here (alert distance 0): the
+    // minimum image is the closest image whatever the search distance.
+    require_unambiguous_image(periods, dimension, a_max, 0., "minimum_gap: ");
+
     PairSearch search(dimension, PairSearchMethod::cell_list);
+    search.set_periodicity(periods);
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, search_distance, pairs);
     double min_gap = std::numeric_limits<double>::infinity();
     for (const auto &p : pairs)
       {
+        const Vec3 dx =
+          search.separation(positions[p.first], positions[p.second]);
         double r2 = 0.;
         for (unsigned d = 0; d < dimension; ++d)
-          {
-            const double dx = positions[p.second][d] - positions[p.first][d];
-            r2 += dx * dx;
-          }
+          r2 += dx[d] * dx[d];
         min_gap =
           std::min(min_gap, std::sqrt(r2) - radii[p.first] - radii[p.second]);
       }

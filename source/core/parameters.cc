@@ -283,6 +283,14 @@ namespace Fidus
                           "2",
                           Patterns::Integer(1, 10),
                           "Smoother sweeps of the velocity AMG.");
+        prm.declare_entry(
+          "AMG smoother type",
+          "Chebyshev",
+          Patterns::Selection("Chebyshev|symmetric Gauss-Seidel|Jacobi"),
+          "Smoother of the velocity AMG (ML). Chebyshev needs no "
+          "communication between the sweeps; symmetric Gauss-Seidel "
+          "smooths better across the jump from fluid to penalised solid "
+          "viscosity (doc/fluid.md).");
       }
       prm.leave_subsection();
     }
@@ -473,6 +481,7 @@ namespace Fidus
       max_linear_iterations     = prm.get_integer("Maximum iterations");
       amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
       amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+      amg_smoother_type         = prm.get("AMG smoother type");
       prm.leave_subsection();
     }
     prm.leave_subsection();
@@ -720,25 +729,42 @@ namespace Fidus
                        "'exact rigid inclusion' scene; allowed: 'fictitious "
                        "domain'");
 
-    // Every particle strictly inside the box.
+    // Every particle strictly inside the box; in the periodic directions of
+    // 'sliding walls' (all but y) the centre must be in the box, the
+    // particle may straddle the face.
     for (unsigned int i = 0; i < positions.size(); ++i)
       for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double lo = positions[i][d] - radii[i];
-          const double hi = positions[i][d] + radii[i];
-          if (lo < lower_left[d] || hi > upper_right[d])
-            {
-              const bool         low = lo < lower_left[d];
-              std::ostringstream s;
-              s << "entry 'Particles/Positions': particle " << i << " at "
-                << format_point(positions[i], dim) << " with radius "
-                << radii[i] << " cuts or lies outside the box face " << axis[d]
-                << " = " << (low ? lower_left[d] : upper_right[d])
-                << "; allowed: every particle inside the box (Domain/Lower "
-                   "left, Domain/Upper right)";
-              throw InputError(s.str());
-            }
-        }
+        if (boundary_condition == BoundaryCondition::sliding_walls && d != 1)
+          {
+            if (positions[i][d] < lower_left[d] ||
+                positions[i][d] >= upper_right[d])
+              {
+                std::ostringstream s;
+                s << "entry 'Particles/Positions': particle " << i << " at "
+                  << format_point(positions[i], dim)
+                  << " has its centre outside the periodic direction "
+                  << axis[d] << "; allowed: " << lower_left[d]
+                  << " <= " << axis[d] << " < " << upper_right[d];
+                throw InputError(s.str());
+              }
+          }
+        else
+          {
+            const double lo = positions[i][d] - radii[i];
+            const double hi = positions[i][d] + radii[i];
+            if (lo < lower_left[d] || hi > upper_right[d])
+              {
+                const bool         low = lo < lower_left[d];
+                std::ostringstream s;
+                s << "entry 'Particles/Positions': particle " << i << " at "
+                  << format_point(positions[i], dim) << " with radius "
+                  << radii[i] << " cuts or lies outside the box face "
+                  << axis[d] << " = " << (low ? lower_left[d] : upper_right[d])
+                  << "; allowed: every particle inside the box (Domain/Lower "
+                     "left, Domain/Upper right)";
+                throw InputError(s.str());
+              }
+          }
 
     // No two particles overlap: sweep along x so that the check stays
     // O(N log N) for large suspensions.

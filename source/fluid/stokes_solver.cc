@@ -19,6 +19,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/stokes_solver.h>
+#include <limits>
 #include <sstream>
 
 namespace Fidus
@@ -539,6 +540,7 @@ namespace Fidus
       amg_data.elliptic              = true;
       amg_data.higher_order_elements = true;
       amg_data.smoother_sweeps       = settings.amg_smoother_sweeps;
+      amg_data.smoother_type         = settings.amg_smoother_type.c_str();
       amg_data.aggregation_threshold = settings.amg_aggregation_threshold;
       // Near-null space of the velocity block: translations and rotations.
       // The solid is r times more viscous than the fluid, so the AMG coarse
@@ -634,6 +636,8 @@ namespace Fidus
         std::deque<TrilinosWrappers::MPI::Vector> dX, dF, AdF;
         TrilinosWrappers::MPI::Vector x_prev, f_prev, Af_prev, f, Af;
         const auto                   &A = system_matrix.block(0, 0);
+        double previous_residual        = std::numeric_limits<double>::max();
+        bool   multiplier_valid_after_stall = true;
         for (unsigned int k = 0; k < settings.max_uzawa_iterations; ++k)
           {
             assemble_multiplier_rhs(solid);
@@ -654,6 +658,22 @@ namespace Fidus
                 stats.uzawa_converged = true;
                 break;
               }
+            // Stop a loop that no longer makes progress instead of spending
+            // the remaining iterations (each a full linear solve) on it:
+            // the residual grew (a particle touching a Dirichlet face,
+            // where rigidity and the imposed velocity contradict each
+            // other) or fell by less than 2 % in one iteration (the plateau
+            // of cut-cell slivers). The penalised solution stands; the
+            // caller reports the residual. A grown residual also drops the
+            // multiplier so that the next solve does not start from it.
+            if (k > 0 && stats.rigidity_residual > 0.98 * previous_residual)
+              {
+                stats.uzawa_stalled = true;
+                if (stats.rigidity_residual > previous_residual)
+                  multiplier_valid_after_stall = false;
+                break;
+              }
+            previous_residual = stats.rigidity_residual;
             // f = rho M u: the plain Uzawa update.
             f = distributed_solution.block(0);
             f.scale(solid_mask.block(0));
@@ -708,7 +728,7 @@ namespace Fidus
               }
             multiplier = distributed_multiplier;
           }
-        multiplier_valid = true;
+        multiplier_valid = multiplier_valid_after_stall;
       }
 
     // Report a pressure of zero mean.
@@ -750,8 +770,8 @@ namespace Fidus
     std::vector<unsigned int>        cands;
 
     // Pass 0: pressure means on the integration region; pass 1: errors.
-    double sums[6] =
-      {0, 0, 0, 0, 0, 0}; // |region|, int p_h, int p, eu, egu, ep
+    // |region|, int p_h, int p, eu, egu, ep, |u exact|^2
+    double sums[7] = {0, 0, 0, 0, 0, 0, 0};
     for (unsigned int pass = 0; pass < 2; ++pass)
       {
         const double mean_h = pass ? sums[1] / sums[0] : 0.;
@@ -783,6 +803,7 @@ namespace Fidus
                   for (unsigned int d = 0; d < dim; ++d)
                     {
                       sums[3] += std::pow(u[q][d] - exact_value[d], 2) * JxW;
+                      sums[6] += std::pow(exact_value[d], 2) * JxW;
                       sums[4] +=
                         (grad_u[q][d] - exact_grad[d]).norm_square() * JxW;
                     }
@@ -796,13 +817,14 @@ namespace Fidus
                               mpi_communicator,
                               ArrayView<double>(sums, 3));
       }
-    Utilities::MPI::sum(ArrayView<const double>(sums + 3, 3),
+    Utilities::MPI::sum(ArrayView<const double>(sums + 3, 4),
                         mpi_communicator,
-                        ArrayView<double>(sums + 3, 3));
+                        ArrayView<double>(sums + 3, 4));
     Errors e;
-    e.u_l2 = std::sqrt(sums[3]);
-    e.u_h1 = std::sqrt(sums[4]);
-    e.p_l2 = std::sqrt(sums[5]);
+    e.u_l2      = std::sqrt(sums[3]);
+    e.u_h1      = std::sqrt(sums[4]);
+    e.p_l2      = std::sqrt(sums[5]);
+    e.u_l2_norm = std::sqrt(sums[6]);
     return e;
   }
 

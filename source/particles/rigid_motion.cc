@@ -36,15 +36,17 @@ namespace Fidus
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const Point<dim> &x = fe_values.quadrature_point(q);
-              const int         i = solid.particle_containing(x, cands);
-              if (i < 0)
+              const int         k = solid.particle_containing(x, cands);
+              if (k < 0)
                 continue;
+              // A periodic image adds to its particle, with the lever arm
+              // taken from the image's centre.
               const double JxW  = fe_values.JxW(q);
-              double      *s    = &sums[i * stride];
+              double      *s    = &sums[solid.owner(k) * stride];
               double       r[3] = {0, 0, 0}, v[3] = {0, 0, 0};
               for (unsigned int d = 0; d < dim; ++d)
                 {
-                  r[d] = x[d] - solid.center(i)[d];
+                  r[d] = x[d] - solid.center(k)[d];
                   v[d] = u[q][d];
                 }
               s[0] += JxW;

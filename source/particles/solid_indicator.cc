@@ -8,14 +8,57 @@ namespace Fidus
   void
   SolidIndicator<dim>::reinit(const std::vector<std::array<double, 3>> &pos,
                               const std::vector<double>                &r,
-                              const Point<dim> &lower_left,
-                              const Point<dim> &upper_right)
+                              const Point<dim>            &lower_left,
+                              const Point<dim>            &upper_right,
+                              const std::array<bool, dim> &periodic)
   {
+    n_real = pos.size();
     centers.resize(pos.size());
     for (unsigned int i = 0; i < pos.size(); ++i)
       for (unsigned int d = 0; d < dim; ++d)
         centers[i][d] = pos[i][d];
     radii = r;
+
+    // Periodic images: shift every particle that crosses a periodic face by
+    // the period, in each direction and in each combination of directions
+    // (a particle in a corner has 3 images in 2D, up to 7 in 3D).
+    image_owner.clear();
+    for (unsigned int i = 0; i < n_real; ++i)
+      {
+        std::array<int, dim> side;
+        bool                 any = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            side[d] = 0;
+            if (!periodic[d])
+              continue;
+            if (centers[i][d] - radii[i] < lower_left[d])
+              side[d] = 1;
+            else if (centers[i][d] + radii[i] > upper_right[d])
+              side[d] = -1;
+            any = any || side[d] != 0;
+          }
+        if (!any)
+          continue;
+        for (unsigned int mask = 1; mask < (1u << dim); ++mask)
+          {
+            bool       valid = true;
+            Point<dim> c     = centers[i];
+            for (unsigned int d = 0; d < dim; ++d)
+              if (mask & (1u << d))
+                {
+                  if (side[d] == 0)
+                    valid = false;
+                  else
+                    c[d] += side[d] * (upper_right[d] - lower_left[d]);
+                }
+            if (!valid)
+              continue;
+            centers.push_back(c);
+            radii.push_back(radii[i]);
+            image_owner.push_back(i);
+          }
+      }
 
     double max_r = 0;
     for (const double a : radii)

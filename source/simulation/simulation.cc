@@ -144,6 +144,9 @@ namespace Fidus
       for (unsigned int d = 0; d < dim; ++d)
         if (d != 1)
           periodic.push_back(d);
+    std::array<bool, dim> is_periodic = {};
+    for (const unsigned int d : periodic)
+      is_periodic[d] = true;
     std::set<types::boundary_id> dirichlet_ids;
     for (unsigned int d = 0; d < dim; ++d)
       if (std::find(periodic.begin(), periodic.end(), d) == periodic.end())
@@ -183,6 +186,10 @@ namespace Fidus
     cs.overlap_tolerance = 2. * cs.tolerance;
     Contact::ContactProjector projector(cs);
     projector.set_walls(walls);
+    std::array<double, 3> periods = {{0., 0., 0.}};
+    for (const unsigned int d : periodic)
+      periods[d] = hi[d] - lo[d];
+    projector.set_periodicity(periods);
 
     // Fluid: mesh, solver, refinement.
     std::unique_ptr<parallel::distributed::Triangulation<dim>> tria;
@@ -214,6 +221,7 @@ namespace Fidus
         ss.max_linear_iterations     = prm.max_linear_iterations;
         ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
         ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
+        ss.amg_smoother_type         = prm.amg_smoother_type;
         ss.reuse_multiplier          = prm.reuse_multiplier;
         ss.verbose                   = prm.verbosity == Verbosity::verbose;
         solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
@@ -303,7 +311,7 @@ namespace Fidus
             }
           return;
         }
-      solid.reinit(X, prm.radii, lo, hi);
+      solid.reinit(X, prm.radii, lo, hi, is_periodic);
       {
         TimerOutput::Scope scope(timer, "mesh");
         double             moved = 0;
@@ -337,12 +345,18 @@ namespace Fidus
                         exact ? static_cast<const Function<dim> &>(*exact) :
                                 boundary);
         if (!fluid_stats.uzawa_converged)
+          ++summary.uzawa_failures;
+        if (!fluid_stats.uzawa_converged)
           std::cerr << "fidus: warning: the Uzawa loop stopped after "
                     << fluid_stats.uzawa_iterations
                     << " iterations at rigidity residual "
                     << fluid_stats.rigidity_residual << " > "
                     << prm.rigidity_tolerance
-                    << " (Fluid/Maximum Uzawa iterations)" << std::endl;
+                    << (fluid_stats.uzawa_stalled ?
+                          " (no progress in the last iteration; "
+                          "Fluid/Rigidity tolerance)" :
+                          " (Fluid/Maximum Uzawa iterations)")
+                    << std::endl;
       }
       {
         TimerOutput::Scope             scope(timer, "rigid motion");
@@ -367,7 +381,8 @@ namespace Fidus
                                                     prm.radii,
                                                     walls,
                                                     dim,
-                                                    search);
+                                                    search,
+                                                    periods);
     };
 
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
@@ -395,7 +410,12 @@ namespace Fidus
         {
           double d2 = 0;
           for (unsigned int d = 0; d < dim; ++d)
-            d2 += std::pow(X[1][d] - X[0][d], 2);
+            {
+              double dx = X[1][d] - X[0][d];
+              if (is_periodic[d]) // minimum image
+                dx -= (hi[d] - lo[d]) * std::round(dx / (hi[d] - lo[d]));
+              d2 += dx * dx;
+            }
           summary.min_normalised_distance =
             std::min(summary.min_normalised_distance,
                      std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
@@ -475,12 +495,14 @@ namespace Fidus
           }
         summary.u_l2_error  = errors.u_l2;
         summary.u_h1_error  = errors.u_h1;
+        summary.u_l2_norm   = errors.u_l2_norm;
         summary.omega_error = std::sqrt(werr) / std::abs(0.5 * g);
         summary.translation_error =
           std::sqrt(uerr) / std::abs(g * prm.radii[0]);
         pcout << std::scientific << std::setprecision(4)
               << "exact rigid inclusion: cells " << summary.n_cells << ", dofs "
               << summary.n_dofs << ", L2 error of u (fluid) " << errors.u_l2
+              << ", L2 norm of exact u (fluid) " << errors.u_l2_norm
               << ", H1 error of u (fluid) " << errors.u_h1
               << ", relative omega error " << summary.omega_error
               << ", |U|/(g a) " << summary.translation_error
@@ -543,6 +565,10 @@ namespace Fidus
               n_active           = cst.n_active;
               n_glued            = cst.n_glued;
               contact_iterations = cst.iterations;
+              summary.max_contact_iterations =
+                std::max(summary.max_contact_iterations, cst.iterations);
+              if (!cst.converged)
+                ++summary.contact_failures;
               if (!cst.converged)
                 std::cerr << "fidus: warning: the contact projection at step "
                           << step + 1 << " did not converge: constraint "
@@ -594,11 +620,27 @@ namespace Fidus
         t += dt;
         ++step;
 
+        // A particle whose centre crossed a periodic face comes back
+        // through the opposite face; the solid indicator keeps images of
+        // particles that straddle it, the contact module works with the
+        // minimum image.
+        for (unsigned int i = 0; i < n; ++i)
+          for (const unsigned int d : periodic)
+            {
+              const double L = hi[d] - lo[d];
+              if (X[i][d] < lo[d])
+                X[i][d] += L;
+              else if (X[i][d] >= hi[d])
+                X[i][d] -= L;
+            }
+
         // A particle that reaches a face where it cannot stay stops the run.
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int d = 0; d < dim; ++d)
-            if (X[i][d] - prm.radii[i] < lo[d] - cs.overlap_tolerance ||
-                X[i][d] + prm.radii[i] > hi[d] + cs.overlap_tolerance)
+            if (is_periodic[d])
+              continue;
+            else if (X[i][d] - prm.radii[i] < lo[d] - cs.overlap_tolerance ||
+                     X[i][d] + prm.radii[i] > hi[d] + cs.overlap_tolerance)
               {
                 const bool         low     = X[i][d] - prm.radii[i] < lo[d];
                 const char         axis[3] = {'x', 'y', 'z'};
@@ -612,9 +654,6 @@ namespace Fidus
                     << (prm.walls ? "true" : "false") << ", Contact/Model "
                     << (prm.contact_model == ContactModel::none ? "none" : "")
                     << ")";
-                else if (std::find(periodic.begin(), periodic.end(), d) !=
-                         periodic.end())
-                  s << "crossing a periodic face is not supported";
                 else
                   s << "it left through an in/outflow face";
                 s << "; output up to step " << step - 1 << " is written";

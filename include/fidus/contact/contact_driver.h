@@ -36,6 +36,15 @@ namespace Fidus::Contact
     set_walls(const std::vector<Wall> &walls);
 
     /**
+     * Set the periodic directions (see ContactProjector::set_periodicity());
+     * minimum_gap() then uses the minimum image too. The driver does not wrap
+     * the positions into the box (the projector does not need it), so the
+     * velocity field should be periodic itself.
+     */
+    void
+    set_periodicity(const std::array<double, 3> &periods);
+
+    /**
      * One step of size @p dt: predict, project, move, advance time. Returns
      * the statistics of the projection; throws ContactError like
      * ContactProjector::project().

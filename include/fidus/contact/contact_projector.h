@@ -1,6 +1,7 @@
 #ifndef fidus_contact_contact_projector_h
 #define fidus_contact_contact_projector_h
 
+#include <array>
 #include <fidus/contact/constraint_system.h>
 #include <fidus/contact/contact_error.h>
 #include <fidus/contact/contact_types.h>
@@ -19,7 +20,8 @@ namespace Fidus::Contact
    *
    * Each call of project() does: validate the input; find the pairs (and
    * particle-wall pairs) within the alert distance with a cell list, plus
-   * every glued pair whatever its distance; build the linearised rows
+   * every glued pair whatever its distance (minimum image in the periodic
+   * directions, see set_periodicity()); build the linearised rows
    * D + dt G v >= 0 (= 0 if glued); solve the dual problem warm-started from
    * the previous step's multipliers; update the glue gamma <- min(0, gamma -
    * dt lambda) (gluey). The projector never moves the particles.
@@ -39,6 +41,34 @@ namespace Fidus::Contact
      */
     void
     set_walls(const std::vector<Wall> &walls);
+
+    /**
+     * Make direction d periodic with period @p periods[d] > 0 (0: not
+     * periodic, the default for every direction), e.g. the `sliding walls'
+     * box: periodic in x (and z), walls in y. Every particle-particle pair
+     * then uses the minimum-image convention: its separation s_ij is
+     * X_j - X_i with a multiple of the period removed in each periodic
+     * direction so that |s_ij[d]| <= L_d / 2, its gap is
+     * D_ij = |s_ij| - a_i - a_j and its normal e_ij = s_ij / |s_ij|. Positions
+     * may thus be given wrapped into the box or not, with the same result;
+     * the glue of a pair is still identified by (i, j), so a glued pair that
+     * crosses a periodic face stays glued.
+     *
+     * Throws ContactError for a negative or non-finite period, a period in a
+     * direction that does not exist (z in 2D), or a periodic direction that
+     * also has a wall (set_walls() checks the same the other way round).
+     * Whether the periods are large enough is checked by project(), which
+     * knows the radii and the alert distance.
+     */
+    void
+    set_periodicity(const std::array<double, 3> &periods);
+
+    /// The periods set with set_periodicity() (0: not periodic).
+    const std::array<double, 3> &
+    get_periodicity() const
+    {
+      return search.get_periodicity();
+    }
 
     /**
      * Weights w_i of the norm |v - u*|_W (default: all 1, the paper's choice).
@@ -62,6 +92,12 @@ namespace Fidus::Contact
      * an initial overlap beyond the overlap tolerance (the message names the
      * pair i, j or particle and wall, and the overlap), size mismatch. The
      * overlap check is skipped for model none, where overlaps are expected.
+     *
+     * With periodic directions (set_periodicity()), also throws if a period
+     * L is not larger than 2 (2 a_max + d_a) (a_max the largest radius, d_a
+     * the alert distance, also after it has been enlarged): below that, two
+     * images of the same pair can both be within the alert distance, and one
+     * row per pair (the minimum image) no longer describes K.
      *
      * Non-convergence of the dual solver does not throw: the statistics say
      * converged = false and give the residual; the caller reports it.
@@ -133,13 +169,23 @@ namespace Fidus::Contact
      * particle-wall pairs. Returns +infinity if there are no walls and no
      * pair closer than @p search_distance. A negative value is an overlap.
      * @p dimension is 2 or 3 (2D ignores z).
+     *
+     * @p periods as in set_periodicity() (default: nothing periodic): pair
+     * gaps are then minimum-image gaps, the smallest over the images of the
+     * pair, whether the positions are wrapped into the box or not. Throws
+     * ContactError if a period is not larger than 4 a_max (then two images
+     * of a pair can overlap at once, so one gap per pair does not describe
+     * the configuration), or for the errors of set_periodicity(). A large
+     * @p search_distance needs no larger period: the minimum image is the
+     * closest image whatever the distance.
      */
     static double
-    minimum_gap(const std::vector<Vec3>   &positions,
-                const std::vector<double> &radii,
-                const std::vector<Wall>   &walls,
-                unsigned int               dimension,
-                double                     search_distance);
+    minimum_gap(const std::vector<Vec3>     &positions,
+                const std::vector<double>   &radii,
+                const std::vector<Wall>     &walls,
+                unsigned int                 dimension,
+                double                       search_distance,
+                const std::array<double, 3> &periods = {{0., 0., 0.}});
 
   private:
     void
@@ -147,6 +193,13 @@ namespace Fidus::Contact
              const std::vector<double> &radii,
              const std::vector<Vec3>   &predicted,
              double                     dt) const;
+
+    /**
+     * Throw if a period is too small for the largest radius @p a_max and the
+     * alert distance @p d_a (see project()).
+     */
+    void
+    check_periods(double a_max, double d_a) const;
 
     /// Build the rows for alert distance @p d_a; returns the smallest gap.
     double

@@ -1,6 +1,8 @@
 #ifndef fidus_contact_pair_search_h
 #define fidus_contact_pair_search_h
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <fidus/contact/contact_types.h>
 #include <utility>
@@ -14,6 +16,11 @@ namespace Fidus::Contact
    * distance of numerics section 3). The cost is O(N) for the cell list
    * (counting sort into a uniform grid, half stencil of neighbour cells) and
    * O(N log N) for the R-tree; never O(N^2).
+   *
+   * Directions may be periodic (set_periodicity()): then X_j - X_i is
+   * replaced by its minimum image, so positions may be given wrapped into
+   * the box or not, and a pair across a periodic face is found like any
+   * other, exactly once.
    *
    * The object keeps its work arrays between calls so that a time loop does
    * not reallocate them every step.
@@ -31,7 +38,57 @@ namespace Fidus::Contact
     PairSearch(unsigned int dimension, PairSearchMethod method);
 
     /**
-     * Replace @p pairs by all pairs (i < j) with gap D_ij < @p cutoff.
+     * Make direction d periodic with period @p periods[d] > 0 (0: not
+     * periodic, the default). Only the period matters, not where the box
+     * starts: the minimum image of a difference does not depend on it.
+     * Throws ContactError for a negative or non-finite period, or a period
+     * in z in 2D (z is ignored there, so a period would silently do
+     * nothing).
+     *
+     * This does not check that the periods are large compared with the
+     * particles (the projector does, since that depends on the radii and the
+     * alert distance): with any period, the search returns each pair once
+     * with its minimum-image gap, which is then the closest of its images.
+     */
+    void
+    set_periodicity(const std::array<double, 3> &periods);
+
+    /// The periods (0: not periodic) set with set_periodicity().
+    const std::array<double, 3> &
+    get_periodicity() const
+    {
+      return period;
+    }
+
+    /**
+     * Minimum image of a difference @p dx along a direction of period
+     * @p period (> 0): dx - L round(dx / L), in [-L/2, L/2]. Returns @p dx
+     * unchanged if @p period is 0 (not periodic).
+     */
+    static double
+    minimum_image(const double dx, const double period)
+    {
+      return period > 0. ? dx - period * std::round(dx / period) : dx;
+    }
+
+    /**
+     * The separation X_to - X_from, replaced by its minimum image in the
+     * periodic directions; in 2D the z component is 0. The projector takes
+     * gaps and normals from it, with the periods of this search, so that
+     * the rows and the pair search agree on which image is meant.
+     */
+    Vec3
+    separation(const Vec3 &from, const Vec3 &to) const
+    {
+      Vec3 dx{{0., 0., 0.}};
+      for (unsigned int d = 0; d < dimension; ++d)
+        dx[d] = minimum_image(to[d] - from[d], period[d]);
+      return dx;
+    }
+
+    /**
+     * Replace @p pairs by all pairs (i < j) with gap D_ij < @p cutoff
+     * (minimum-image gap in the periodic directions).
      * The order is deterministic (it follows the cells, so that neighbouring
      * pairs are neighbours in the list, which the Gauss-Seidel solver likes).
      */
@@ -55,8 +112,9 @@ namespace Fidus::Contact
                      double                     cutoff,
                      std::vector<Pair>         &pairs) const;
 
-    unsigned int     dimension;
-    PairSearchMethod method;
+    unsigned int          dimension;
+    PairSearchMethod      method;
+    std::array<double, 3> period = {{0., 0., 0.}};
 
     /// Cell list work arrays: CSR of particles by cell, and the particle
     /// data copied in cell order so that the inner loop reads contiguously.

@@ -98,6 +98,7 @@ namespace Fidus
     unsigned int max_linear_iterations     = 1000;
     double       amg_aggregation_threshold = 0.02;
     unsigned int amg_smoother_sweeps       = 2;
+    std::string  amg_smoother_type         = "Chebyshev";
 
     // Particles
     std::vector<std::array<double, 3>> positions;

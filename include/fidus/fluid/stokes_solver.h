@@ -52,6 +52,7 @@ namespace Fidus
       unsigned int max_linear_iterations     = 1000;
       double       amg_aggregation_threshold = 0.02;
       unsigned int amg_smoother_sweeps       = 2;
+      std::string  amg_smoother_type         = "Chebyshev";
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
@@ -72,15 +73,20 @@ namespace Fidus
       unsigned int expensive_solves  = 0;
       double       rigidity_residual = 0.;
       bool         uzawa_converged   = true;
-      double       assemble_seconds  = 0.;
-      double       setup_seconds     = 0.; ///< AMG and Jacobi set-up
-      double       solve_seconds     = 0.;
+      /// The Uzawa loop stopped early: no progress (see solve()).
+      bool   uzawa_stalled    = false;
+      double assemble_seconds = 0.;
+      double setup_seconds    = 0.; ///< AMG and Jacobi set-up
+      double solve_seconds    = 0.;
     };
 
     /// Error norms against an exact solution.
     struct Errors
     {
       double u_l2 = 0., u_h1 = 0., p_l2 = 0.;
+      /// L2 norm of the exact velocity on the same region (for relative
+      /// errors).
+      double u_l2_norm = 0.;
     };
 
     /// Work on @p triangulation (owned by the caller).

@@ -19,33 +19,58 @@ namespace Fidus
    * particle diameter wide, so that every query costs O(1) for a suspension
    * of equal spheres instead of O(N): assembly asks it at every quadrature
    * point of every cell.
+   *
+   * In a periodic direction, a particle that crosses the face of the box
+   * also has an image on the other side, so that the solid is seen from
+   * both sides of the face. The queries work on entries: entries
+   * 0..n_particles()-1 are the particles themselves, further entries are
+   * images, owner() maps an entry to its particle.
    */
   template <int dim>
   class SolidIndicator
   {
   public:
-    /// Build the bins for the given particles; the bin grid covers the box.
+    /**
+     * Build the bins for the given particles; the bin grid covers the box.
+     * Directions with @p periodic true get images of the particles that
+     * cross a face (positions must lie in the box in those directions).
+     */
     void
     reinit(const std::vector<std::array<double, 3>> &positions,
            const std::vector<double>                &radii,
            const Point<dim>                         &lower_left,
-           const Point<dim>                         &upper_right);
+           const Point<dim>                         &upper_right,
+           const std::array<bool, dim>              &periodic = {});
 
-    /// Number of particles.
+    /// Number of particles (not counting images).
     unsigned int
     n_particles() const
+    {
+      return n_real;
+    }
+
+    /// Number of entries: particles and their periodic images.
+    unsigned int
+    n_entries() const
     {
       return centers.size();
     }
 
-    /// Centre of particle @p i.
+    /// The particle of entry @p k (k itself unless it is an image).
+    unsigned int
+    owner(const unsigned int k) const
+    {
+      return k < n_real ? k : image_owner[k - n_real];
+    }
+
+    /// Centre of entry @p i (a particle or an image).
     const Point<dim> &
     center(const unsigned int i) const
     {
       return centers[i];
     }
 
-    /// Radius of particle @p i.
+    /// Radius of entry @p i.
     double
     radius(const unsigned int i) const
     {
@@ -62,12 +87,12 @@ namespace Fidus
                const double               r,
                std::vector<unsigned int> &out) const;
 
-    /// Index of the particle that contains @p x among @p candidates, or -1.
+    /// Entry (see owner()) that contains @p x among @p candidates, or -1.
     int
     particle_containing(const Point<dim>                &x,
                         const std::vector<unsigned int> &candidates) const;
 
-    /// Index of the particle that contains @p x, or -1.
+    /// Entry (see owner()) that contains @p x, or -1.
     int
     particle_containing(const Point<dim> &x) const;
 
@@ -83,6 +108,8 @@ namespace Fidus
     unsigned int
     bin_index(const std::array<int, dim> &b) const;
 
+    unsigned int                           n_real = 0;
+    std::vector<unsigned int>              image_owner;
     std::vector<Point<dim>>                centers;
     std::vector<double>                    radii;
     Point<dim>                             origin;

@@ -28,12 +28,19 @@ namespace Fidus
     unsigned int max_uzawa_iterations = 0, max_linear_iterations = 0;
     /// Largest rigidity residual of any step.
     double max_rigidity_residual = 0.;
+    /// Steps whose Uzawa loop or contact projection did not reach its
+    /// tolerance (each was reported as a warning), and the largest number
+    /// of dual-solver iterations of any projection.
+    unsigned int uzawa_failures = 0, contact_failures = 0,
+                 max_contact_iterations = 0;
     /// Cells and DoFs of the last solve.
     unsigned long long n_cells = 0, n_dofs = 0;
     /// Errors of the 'exact rigid inclusion' scene (else 0): L2 and H1 of u
     /// on the fluid part, |omega + g/2| / (g/2) and |U| / (g a).
     double u_l2_error = 0., u_h1_error = 0., omega_error = 0.,
            translation_error = 0.;
+    /// L2 norm of the exact velocity on the fluid part (same scene).
+    double u_l2_norm = 0.;
     /// Wall seconds of the whole run.
     double wall_seconds = 0.;
   };

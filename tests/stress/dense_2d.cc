@@ -1,0 +1,90 @@
+// Stress test: a dense 2D suspension, 100 discs at area fraction 0.41
+// between sliding walls (periodic in x).
+//  - 'undisturbed shear' for 10 strain units (1000 steps) with 'gluey' and
+//    with 'inelastic': particles cross the periodic faces many times and
+//    meet in clusters; no gap may go below -tolerance, every projection
+//    must converge, nothing may become NaN.
+//  - the fictitious-domain fluid for 1 step on the same layout (level 5):
+//  bounded
+//    Uzawa and FGMRES iterations, no NaN, no overlap.
+
+#include "../fidus_test.h"
+#include "stress_tools.h"
+
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
+
+using namespace FidusTest;
+
+const double a   = 0.036;
+const double tol = 1e-9 * a; // Contact/Tolerance (relative) times a
+
+Fidus::RunSummary
+run(const std::string &fluid, const std::string &model, const double end)
+{
+  const auto         x = random_layout(2, 100, a, 1e-3, 7);
+  std::ostringstream prm;
+  prm << "set Dimension = 2\n"
+      << "set Output directory = dense_" << model << "_"
+      << (fluid[0] == 'u' ? "undisturbed" : "fd") << "\n"
+      << "subsection Domain\n  set Boundary condition = sliding walls\nend\n"
+      << "subsection Fluid\n  set Model = " << fluid << "\n"
+      << "  set Rigidity tolerance = 1e-2\n"
+      << "  set Maximum Uzawa iterations = 3\nend\n"
+      << "subsection Particles\n  set Radius = " << a << "\n"
+      << "  set Positions = " << positions_entry(x, 2) << "\nend\n"
+      << "subsection Contact\n  set Model = " << model << "\nend\n"
+      << "subsection Time stepping\n  set End time = " << end << "\n"
+      << "  set Time step = " << (fluid[0] == 'u' ? 0.01 : 0.02) << "\nend\n"
+      << "subsection Mesh refinement\n"
+      << "  set Initial global refinement = 4\n  set Minimum level = 4\n"
+      << "  set Maximum level = " << (fluid[0] == 'u' ? 6 : 5) << "\nend\n"
+      << "subsection Output\n  set Verbosity = quiet\nend\n";
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+}
+
+bool
+finite(const Fidus::RunSummary &s)
+{
+  for (const auto &v : {s.positions, s.velocities, s.omegas})
+    for (const auto &p : v)
+      for (const double c : p)
+        if (!std::isfinite(c))
+          return false;
+  return true;
+}
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
+  for (const std::string model : {"gluey", "inelastic"})
+    {
+      const Fidus::RunSummary s = run("undisturbed shear", model, 10.);
+      const std::string       w = "undisturbed, " + model + ": ";
+      check_range(w + "steps", s.n_steps, 1000, 1000);
+      check_range(w + "finite state", finite(s), 1, 1);
+      check_range(w + "minimum gap", s.min_gap, -tol, 1.);
+      check_range(w + "non-converged projections", s.contact_failures, 0, 0);
+      check_range(w + "largest dual iterations",
+                  s.max_contact_iterations,
+                  0,
+                  20000);
+    }
+  const Fidus::RunSummary s = run("fictitious domain", "gluey", 0.02);
+  check_range("fictitious domain, gluey: finite state", finite(s), 1, 1);
+  check_range("fictitious domain, gluey: minimum gap", s.min_gap, -tol, 1.);
+  check_range("fictitious domain, gluey: largest Uzawa iterations",
+              s.max_uzawa_iterations,
+              1,
+              3);
+  // Per step, summed over the Uzawa iterations: each linear solve is
+  // bounded by 'Maximum cheap iterations' + 'Maximum iterations' (1000 +
+  // 1000, beyond that the solver stops the run), so 3 * 2000 per step.
+  check_range("fictitious domain, gluey: FGMRES iterations per step",
+              s.max_linear_iterations,
+              1,
+              3 * 2000);
+  return exit_code();
+}

@@ -1,0 +1,88 @@
+// Stress tests on the seed paper's 2D pair: each must run without NaN and
+// without any gap below -tolerance (walls included), with bounded solver
+// iterations:
+//  - penalty factor 1e6 (the solid 1e6 times more viscous than the fluid);
+//  - a time step ten times the scene's default (1 instead of 0.1), with
+//    'gluey' and 'inelastic';
+//  - two particles 1e-12 apart and two particles touching the walls.
+
+#include "../fidus_test.h"
+
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
+
+using namespace FidusTest;
+
+const double a   = 0.05;
+const double tol = 1e-9 * a;
+
+Fidus::RunSummary
+run(const std::string &name,
+    const std::string &model,
+    const std::string &positions,
+    const double       penalty,
+    const double       dt,
+    const double       end,
+    const unsigned int level)
+{
+  std::ostringstream prm;
+  prm << "set Dimension = 2\n"
+      << "set Output directory = " << name << "\n"
+      << "subsection Fluid\n  set Penalty factor = " << penalty << "\n"
+      << "  set Rigidity tolerance = 5e-3\n"
+      << "  set Maximum Uzawa iterations = 20\nend\n"
+      << "subsection Particles\n  set Radius = " << a << "\n"
+      << "  set Positions = " << positions << "\nend\n"
+      << "subsection Contact\n  set Model = " << model << "\nend\n"
+      << "subsection Time stepping\n  set End time = " << end << "\n"
+      << "  set Time step = " << dt << "\nend\n"
+      << "subsection Mesh refinement\n"
+      << "  set Initial global refinement = 3\n  set Minimum level = 3\n"
+      << "  set Maximum level = " << level << "\nend\n"
+      << "subsection Output\n  set Verbosity = quiet\nend\n";
+  return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+}
+
+void
+check(const std::string &what, const Fidus::RunSummary &s)
+{
+  bool finite = true;
+  for (const auto &v : {s.positions, s.velocities, s.omegas})
+    for (const auto &p : v)
+      for (const double c : p)
+        finite = finite && std::isfinite(c);
+  check_range(what + ": finite state", finite, 1, 1);
+  check_range(what + ": minimum gap", s.min_gap, -tol, 1.);
+  check_range(what + ": largest Uzawa iterations",
+              s.max_uzawa_iterations,
+              1,
+              20);
+  // Per step, summed over the Uzawa iterations (each solve at most
+  // 1000 cheap + 1000 expensive iterations, else the run stops).
+  check_range(what + ": FGMRES iterations per step",
+              s.max_linear_iterations,
+              1,
+              20 * 2000);
+}
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
+  const std::string pair = "0.451, 0.51; 0.549, 0.49";
+  check("penalty 1e6", run("penalty", "gluey", pair, 1e6, 0.1, 0.2, 5));
+  for (const std::string model : {"gluey", "inelastic"})
+    check("time step 1, " + model,
+          run("dt_" + model, model, pair, 1e3, 1., 6., 5));
+  // Gap 1e-12 between the first two; the others touch y = 0 and y = 1.
+  check("1e-12 apart, touching walls",
+        run("touching",
+            "gluey",
+            "0.45, 0.5; 0.550000000001, 0.5; 0.3, 0.05; 0.7, 0.95",
+            1e3,
+            0.1,
+            0.5,
+            6));
+  return exit_code();
+}
