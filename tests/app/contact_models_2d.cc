@@ -34,6 +34,7 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
   const double            tol  = 1e-9 * 0.05 / 0.1; // contact tolerance / (2a)
   const Fidus::RunSummary none = run("none");
   check_range("none: minimum normalised distance",

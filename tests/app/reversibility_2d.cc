@@ -52,6 +52,7 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
   check_range("gluey: |X(2T) - X(0)| / a", return_miss("gluey"), 0., 0.01);
   check_range("inelastic: |X(2T) - X(0)| / a",
               return_miss("inelastic"),

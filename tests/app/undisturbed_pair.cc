@@ -62,7 +62,8 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const double                             a = 0.05;
+  redirect_warnings();
+  const double a = 0.05;
   for (const double dt : {0.01, 0.005})
     {
       const std::string tag = " (dt = " + std::to_string(dt).substr(0, 5) + ")";

@@ -22,7 +22,8 @@ run(const unsigned int dim, const unsigned int level)
       << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"
       << "  set Boundary condition = exact rigid inclusion\n"
       << "end\n"
-      << "subsection Fluid\n  set Rigidity tolerance = 5e-4\nend\n"
+      << "subsection Fluid\n  set Rigidity tolerance = 5e-4\n"
+      << "  subsection Linear solver\n    set Tolerance = 1e-8\n  end\nend\n"
       << "subsection Particles\n  set Radius = " << (dim == 2 ? "0.15" : "0.2")
       << "\n  set Positions = " << (dim == 2 ? "0.5, 0.5" : "0.5, 0.5, 0.5")
       << "\nend\n"
@@ -66,6 +67,7 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
   study(2, {5, 6, 7});
   study(3, {3, 4});
   return exit_code();

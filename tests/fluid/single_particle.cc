@@ -62,6 +62,7 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
   check("2D centre", run(2, "0.5, 0.5", 7), 0.5);
   check("2D y = 0.6", run(2, "0.5, 0.6", 7), 0.6);
   check("3D centre", run(3, "0.5, 0.5, 0.5", 4), 0.5);

@@ -45,9 +45,9 @@ namespace Fidus
       unsigned int degree                    = 2;
       double       viscosity                 = 1.;
       double       penalty_factor            = 1e3;
-      double       rigidity_tolerance        = 1e-6;
+      double       rigidity_tolerance        = 1e-3;
       unsigned int max_uzawa_iterations      = 50;
-      double       linear_tolerance          = 1e-8;
+      double       linear_tolerance          = 1e-6;
       unsigned int max_cheap_iterations      = 1000;
       unsigned int max_linear_iterations     = 1000;
       double       amg_aggregation_threshold = 0.02;
