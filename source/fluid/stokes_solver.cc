@@ -451,6 +451,15 @@ namespace Fidus
       }
     const double target = settings.linear_tolerance * rhs_norm;
 
+    // Every solve starts from zero, not from the last velocity. The last
+    // velocity is rigid on the previous particle positions or for the
+    // previous multiplier, so its residual sits at the interfaces: the
+    // content that the pressure-mass Schur approximation handles worst.
+    // From zero, the residual is the smooth right-hand side. Measured
+    // (doc/performance.md): 2D paper scene to t = 3, level 6: 4576 -> 3079
+    // FGMRES iterations; second Uzawa solve of the 2D inclusion: 270 -> 92.
+    distributed_solution = 0;
+
     unsigned int iterations = 0;
     bool         done       = false;
     SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData data(
@@ -605,15 +614,6 @@ namespace Fidus
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();
-    // The first linear solve of a new geometry starts from zero, not from
-    // the previous step's velocity: that one is rigid on the old particle
-    // positions, so its residual is concentrated at the moved interfaces,
-    // exactly the content the pressure-mass Schur approximation handles
-    // worst. From zero the residual is the smooth boundary data. Measured
-    // on the 2D paper scene (t <= 3, level 6): 4576 -> 3219 FGMRES
-    // iterations, 19 s -> 11 s (doc/performance.md). Later Uzawa
-    // iterations of the same solve keep their warm start.
-    distributed_solution = 0;
     const double rho = 2. * (settings.penalty_factor - 1.) * settings.viscosity;
     if (!multiplier_valid || !settings.reuse_multiplier)
       {
