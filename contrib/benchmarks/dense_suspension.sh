@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Long stress run (issue: numerical robustness): a dense 2D suspension of
+# N discs at area fraction phi between sliding walls (periodic in x),
+# sheared for S strain units, with the chosen contact model and fluid
+# model. The short version is tests/stress/dense_2d.
+# Prints: steps, smallest gap over the run (must be >= -tolerance), the
+# largest Uzawa and FGMRES counts per step, and whether any value was NaN.
+# Usage: contrib/benchmarks/dense_suspension.sh [gluey|inelastic] \
+#          ["fictitious domain"|"undisturbed shear"] [strain, default 10] \
+#          [N, default 100] [phi, default 0.4] [max level, default 7]
+set -euo pipefail
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+[ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
+fidus="${FIDUS:-$top/build-release/fidus}"
+model="${1:-gluey}"; fluid="${2:-fictitious domain}"; strain="${3:-10}"
+n="${4:-100}"; phi="${5:-0.4}"; level="${6:-7}"
+work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+
+# Random sequential addition, minimum image in x, clear of the y walls.
+a=$(/usr/bin/python3 - "$n" "$phi" "$work/positions.txt" <<'PY'
+import math, random, sys
+n, phi, out = int(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+a = math.sqrt(phi / (n * math.pi))
+random.seed(1)
+x = []
+while len(x) < n:
+    p = (random.random(), random.random())
+    if not (a + 1e-3 < p[1] < 1 - a - 1e-3):
+        continue
+    if all((lambda dx, dy: dx * dx + dy * dy)(p[0] - q[0] - round(p[0] - q[0]),
+                                              p[1] - q[1]) >= (2 * a + 1e-3) ** 2
+           for q in x):
+        x.append(p)
+open(out, "w").write("".join("%.15f %.15f\n" % p for p in x))
+print("%.15f" % a)
+PY
+)
+cat > "$work/dense.prm" <<EOF2
+set Dimension = 2
+set Output directory = $work/out
+subsection Domain
+  set Boundary condition = sliding walls
+end
+subsection Fluid
+  set Model = $fluid
+  set Maximum Uzawa iterations = 10
+end
+subsection Particles
+  set Radius = $a
+  set Positions file = $work/positions.txt
+end
+subsection Contact
+  set Model = $model
+end
+subsection Time stepping
+  set End time = $strain
+  set Time step = 0.02
+end
+subsection Mesh refinement
+  set Initial global refinement = 4
+  set Minimum level = 4
+  set Maximum level = $level
+end
+subsection Output
+  set Progress interval = 25
+end
+EOF2
+echo "N = $n, phi = $phi, a = $a, $model, $fluid, strain $strain, level $level"
+status=0
+"$fidus" "$work/dense.prm" || status=$?
+awk -F, 'NR > 1 { steps++; if ($9 < g || NR == 2) g = $9; if ($6 > u) u = $6; if ($7 > l) l = $7;
+                  for (i = 1; i <= NF; i++) if ($i ~ /nan|inf/) bad = 1 }
+         END { printf "steps %d, smallest gap %.3e, max Uzawa %d, max FGMRES per step %d, NaN %s\n",
+               steps, g, u, l, bad ? "yes" : "no" }' "$work/out/statistics.csv"
+exit $status
