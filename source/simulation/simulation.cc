@@ -345,18 +345,19 @@ namespace Fidus
                         exact ? static_cast<const Function<dim> &>(*exact) :
                                 boundary);
         if (!fluid_stats.uzawa_converged)
-          ++summary.uzawa_failures;
-        if (!fluid_stats.uzawa_converged)
-          std::cerr << "fidus: warning: the Uzawa loop stopped after "
-                    << fluid_stats.uzawa_iterations
-                    << " iterations at rigidity residual "
-                    << fluid_stats.rigidity_residual << " > "
-                    << prm.rigidity_tolerance
-                    << (fluid_stats.uzawa_stalled ?
-                          " (no progress in the last iteration; "
-                          "Fluid/Rigidity tolerance)" :
-                          " (Fluid/Maximum Uzawa iterations)")
-                    << std::endl;
+          {
+            ++summary.uzawa_failures;
+            std::cerr << "fidus: warning: the Uzawa loop stopped after "
+                      << fluid_stats.uzawa_iterations
+                      << " iterations at rigidity residual "
+                      << fluid_stats.rigidity_residual << " > "
+                      << prm.rigidity_tolerance
+                      << (fluid_stats.uzawa_stalled ?
+                            " (no progress in the last iteration; "
+                            "Fluid/Rigidity tolerance)" :
+                            " (Fluid/Maximum Uzawa iterations)")
+                      << std::endl;
+          }
       }
       {
         TimerOutput::Scope             scope(timer, "rigid motion");
@@ -410,12 +411,9 @@ namespace Fidus
         {
           double d2 = 0;
           for (unsigned int d = 0; d < dim; ++d)
-            {
-              double dx = X[1][d] - X[0][d];
-              if (is_periodic[d]) // minimum image
-                dx -= (hi[d] - lo[d]) * std::round(dx / (hi[d] - lo[d]));
-              d2 += dx * dx;
-            }
+            d2 += std::pow(Contact::PairSearch::minimum_image(X[1][d] - X[0][d],
+                                                              periods[d]),
+                           2);
           summary.min_normalised_distance =
             std::min(summary.min_normalised_distance,
                      std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
@@ -568,13 +566,14 @@ namespace Fidus
               summary.max_contact_iterations =
                 std::max(summary.max_contact_iterations, cst.iterations);
               if (!cst.converged)
-                ++summary.contact_failures;
-              if (!cst.converged)
-                std::cerr << "fidus: warning: the contact projection at step "
-                          << step + 1 << " did not converge: constraint "
-                          << "violation " << cst.residual << " > "
-                          << cs.tolerance << " after " << cst.iterations
-                          << " iterations" << std::endl;
+                {
+                  ++summary.contact_failures;
+                  std::cerr << "fidus: warning: the contact projection at step "
+                            << step + 1 << " did not converge: constraint "
+                            << "violation " << cst.residual << " > "
+                            << cs.tolerance << " after " << cst.iterations
+                            << " iterations" << std::endl;
+                }
             }
           catch (const Contact::ContactError &e)
             {

@@ -7,6 +7,7 @@
 //  - two particles 1e-12 apart and two particles touching the walls.
 
 #include "../fidus_test.h"
+#include "stress_tools.h"
 
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
@@ -46,12 +47,7 @@ run(const std::string &name,
 void
 check(const std::string &what, const Fidus::RunSummary &s)
 {
-  bool finite = true;
-  for (const auto &v : {s.positions, s.velocities, s.omegas})
-    for (const auto &p : v)
-      for (const double c : p)
-        finite = finite && std::isfinite(c);
-  check_range(what + ": finite state", finite, 1, 1);
+  check_range(what + ": finite state", finite_state(s), 1, 1);
   check_range(what + ": minimum gap", s.min_gap, -tol, 1.);
   check_range(what + ": largest Uzawa iterations",
               s.max_uzawa_iterations,

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fidus/simulation/simulation.h>
 #include <random>
 #include <sstream>
 #include <string>
@@ -61,6 +62,19 @@ namespace FidusTest
           x.push_back(p);
       }
     return x;
+  }
+
+  /// True if no position, velocity or angular velocity of the final state
+  /// is NaN or infinite.
+  inline bool
+  finite_state(const Fidus::RunSummary &s)
+  {
+    for (const auto &v : {s.positions, s.velocities, s.omegas})
+      for (const auto &p : v)
+        for (const double c : p)
+          if (!std::isfinite(c))
+            return false;
+    return true;
   }
 
   /// 'x, y[, z]; ...' with 17 digits.

@@ -38,13 +38,8 @@ main(int argc, char **argv)
       << "subsection Output\n  set Verbosity = quiet\nend\n";
   const Fidus::RunSummary s =
     Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
-  bool finite = true;
-  for (const auto &v : {s.positions, s.velocities, s.omegas})
-    for (const auto &p : v)
-      for (const double c : p)
-        finite = finite && std::isfinite(c);
   check_range("particles", s.positions.size(), 20, 100);
-  check_range("finite state", finite, 1, 1);
+  check_range("finite state", finite_state(s), 1, 1);
   check_range("minimum gap", s.min_gap, -1e-9 * a, 1.);
   check_range("largest Uzawa iterations", s.max_uzawa_iterations, 1, 10);
   // Per step, summed over the Uzawa iterations (each solve at most 2000).
