@@ -96,8 +96,8 @@ namespace Fidus
     double       linear_tolerance          = 1e-6;
     unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;
-    double       amg_aggregation_threshold = 0.02;
-    unsigned int amg_smoother_sweeps       = 2;
+    double       amg_aggregation_threshold = 0.;
+    unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";
 
     // Particles
@@ -123,7 +123,7 @@ namespace Fidus
     unsigned int initial_global_refinement = 3;
     unsigned int minimum_level             = 3;
     unsigned int maximum_level             = 8;
-    double       interface_band            = 2.;
+    double       interface_band            = 1.;
     double       gap_refinement_distance   = 0.5;
     double       remesh_fraction           = 0.5;
 

@@ -50,8 +50,8 @@ namespace Fidus
       double       linear_tolerance          = 1e-6;
       unsigned int max_cheap_iterations      = 1000;
       unsigned int max_linear_iterations     = 1000;
-      double       amg_aggregation_threshold = 0.02;
-      unsigned int amg_smoother_sweeps       = 2;
+      double       amg_aggregation_threshold = 0.;
+      unsigned int amg_smoother_sweeps       = 4;
       std::string  amg_smoother_type         = "Chebyshev";
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;

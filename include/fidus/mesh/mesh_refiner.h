@@ -28,7 +28,7 @@ namespace Fidus
     {
       unsigned int minimum_level = 3;
       unsigned int maximum_level = 8;
-      double       band          = 2.;
+      double       band          = 1.;
       double       gap_distance  = 0.5; ///< relative to the smaller radius
     };
 
