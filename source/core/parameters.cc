@@ -775,9 +775,41 @@ namespace Fidus
           }
 
     // No two particles overlap: sweep along x so that the check stays
-    // O(N log N) for large suspensions.
+    // O(N log N) for large suspensions. With 'sliding walls', x and z are
+    // periodic: distances use the nearest periodic image, and pairs across
+    // the x faces (which the sweep does not see) are checked separately.
     if (positions.size() > 1)
       {
+        const bool periodic =
+          boundary_condition == BoundaryCondition::sliding_walls;
+        const auto gap_between = [&](const unsigned int i,
+                                     const unsigned int j) {
+          double dist2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              double dx = positions[j][d] - positions[i][d];
+              if (periodic && d != 1)
+                {
+                  const double period = upper_right[d] - lower_left[d];
+                  dx -= period * std::round(dx / period);
+                }
+              dist2 += dx * dx;
+            }
+          return std::sqrt(dist2) - radii[i] - radii[j];
+        };
+        const auto report =
+          [&](const unsigned int i, const unsigned int j, const double gap) {
+            std::ostringstream s;
+            s << "entry 'Particles/Positions': particles " << std::min(i, j)
+              << " and " << std::max(i, j) << " overlap by " << -gap;
+            if (periodic)
+              s << " (nearest periodic image; 'sliding walls' is periodic in "
+                   "x"
+                << (dim == 3 ? " and z" : "") << ")";
+            s << "; allowed: non-overlapping particles (gap >= 0)";
+            throw InputError(s.str());
+          };
+
         std::vector<unsigned int> order(positions.size());
         std::iota(order.begin(), order.end(), 0u);
         std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
@@ -790,20 +822,23 @@ namespace Fidus
               const unsigned int i = order[k], j = order[l];
               if (positions[j][0] - positions[i][0] > 2 * max_radius)
                 break;
-              double dist2 = 0;
-              for (unsigned int d = 0; d < dim; ++d)
-                dist2 += std::pow(positions[j][d] - positions[i][d], 2);
-              const double gap = std::sqrt(dist2) - radii[i] - radii[j];
+              const double gap = gap_between(i, j);
               if (gap < 0.)
-                {
-                  std::ostringstream s;
-                  s << "entry 'Particles/Positions': particles "
-                    << std::min(i, j) << " and " << std::max(i, j)
-                    << " overlap by " << -gap
-                    << "; allowed: non-overlapping particles (gap >= 0)";
-                  throw InputError(s.str());
-                }
+                report(i, j, gap);
             }
+        if (periodic)
+          for (unsigned int k = 0;
+               k < order.size() &&
+               positions[order[k]][0] < lower_left[0] + 2 * max_radius;
+               ++k)
+            for (unsigned int l = order.size();
+                 l-- > k + 1 &&
+                 positions[order[l]][0] > upper_right[0] - 2 * max_radius;)
+              {
+                const double gap = gap_between(order[k], order[l]);
+                if (gap < 0.)
+                  report(order[k], order[l], gap);
+              }
       }
   }
 } // namespace Fidus

@@ -44,6 +44,8 @@ expect_error() {
 
 expect_error "overlapping particles" "particles 0 and 1 overlap" \
   "$(base | sed 's/0.451, 0.51; 0.549, 0.49/0.45, 0.5; 0.5, 0.5/')"
+expect_error "overlap across a periodic face" "particles 0 and 1 overlap by 0.06.*(nearest periodic image" \
+  "$(base | sed 's/0.451, 0.51; 0.549, 0.49/0.02, 0.5; 0.98, 0.5/'; printf 'subsection Domain\n  set Boundary condition = sliding walls\nend\n')"
 expect_error "particle outside the box" "cuts or lies outside the box face x = 1" \
   "$(base | sed 's/0.549, 0.49/0.98, 0.49/')"
 expect_error "radius <= 0" "Particles/Radius.*allowed: a radius > 0" \
