@@ -337,8 +337,18 @@ namespace Fidus::Contact
             << " (gap D = " << gap << ", centres "
             << format_vector(positions[i], dim) << " and "
             << format_vector(positions[j], dim) << ", radii " << radii[i]
-            << " and " << radii[j] << ") at the start of the step; the "
-            << "allowed overlap is " << allowed_overlap;
+            << " and " << radii[j] << ")";
+          // Across a periodic face the centres alone mislead: name the
+          // nearest-image separation that the gap was measured along.
+          bool wrapped = false;
+          for (unsigned d = 0; d < dim; ++d)
+            wrapped |= std::abs(e[d] - (positions[j][d] - positions[i][d])) >
+                       1e-12 * (1. + std::abs(e[d]));
+          if (wrapped)
+            s << " across a periodic face (nearest-image separation "
+              << format_vector(e, dim) << ")";
+          s << " at the start of the step; the allowed overlap is "
+            << allowed_overlap;
           throw ContactError(s.str());
         }
       for (unsigned d = 0; d < dim; ++d)

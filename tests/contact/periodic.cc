@@ -483,6 +483,22 @@ namespace
         ok = false;
       }
     TestTools::check("period 0.41 > 0.406 accepted", ok);
+    // Discs at x = 0.05 and 0.95 in a period of 1 are 0.1 apart through the
+    // face: overlap 0.1, and the message says the gap was measured across it.
+    expect_error(
+      "overlap across the periodic face names the nearest-image separation",
+      [&] {
+        ContactProjector p(settings);
+        p.set_periodicity({{1., 0., 0.}});
+        p.project({Vec3{{0.05, 0.5, 0.}}, Vec3{{0.95, 0.5, 0.}}},
+                  a,
+                  u,
+                  0.01,
+                  out);
+      },
+      {"particles 0 and 1",
+       "overlap by 0.1",
+       "across a periodic face (nearest-image separation (-0.1"});
     expect_error(
       "minimum_gap(): period below 4 a_max rejected",
       [&] {
