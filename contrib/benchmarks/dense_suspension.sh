@@ -9,6 +9,7 @@
 # would have to carry two rigid motions: the Uzawa loop cannot reach its
 # tolerance there (a warning per step) and every further iteration is a
 # full solve, so the loop is capped at 3.
+# Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
 # Usage: contrib/benchmarks/dense_suspension.sh [gluey|inelastic] \
 #          ["fictitious domain"|"undisturbed shear"] [strain, default 10] \
 #          [N, default 100] [phi, default 0.4] [max level, default 7]
@@ -76,4 +77,5 @@ awk -F, 'NR > 1 { steps++; if ($9 < g || NR == 2) g = $9; if ($6 > u) u = $6; if
                   for (i = 1; i <= NF; i++) if ($i ~ /nan|inf/) bad = 1 }
          END { printf "steps %d, smallest gap %.3e, max Uzawa %d, max FGMRES per step %d, NaN %s\n",
                steps, g, u, l, bad ? "yes" : "no" }' "$work/out/statistics.csv"
+if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
 exit $status
