@@ -4,7 +4,8 @@
 # sheared for S strain units, with the chosen contact model and fluid
 # model. The short version is tests/stress/dense_2d.
 # Prints: steps, smallest gap over the run (must be >= -tolerance), the
-# largest Uzawa and FGMRES counts per step, and whether any value was NaN.
+# largest Uzawa and FGMRES counts per step, max |U| and |omega| over the
+# run, and whether any value was NaN (contrib/benchmarks/summarize_run.sh).
 # At area fraction 0.4 many gaps are below the cell size, where one cell
 # would have to carry two rigid motions: the Uzawa loop cannot reach its
 # tolerance there (a warning per step) and every further iteration is a
@@ -73,9 +74,6 @@ EOF2
 echo "N = $n, phi = $phi, a = $a, $model, $fluid, strain $strain, level $level"
 status=0
 "$fidus" "$work/dense.prm" || status=$?
-awk -F, 'NR > 1 { steps++; if ($9 < g || NR == 2) g = $9; if ($6 > u) u = $6; if ($7 > l) l = $7;
-                  for (i = 1; i <= NF; i++) if ($i ~ /nan|inf/) bad = 1 }
-         END { printf "steps %d, smallest gap %.3e, max Uzawa %d, max FGMRES per step %d, NaN %s\n",
-               steps, g, u, l, bad ? "yes" : "no" }' "$work/out/statistics.csv"
+"$top/contrib/benchmarks/summarize_run.sh" "$work/out"
 if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
 exit $status

@@ -99,6 +99,30 @@ namespace Fidus::Contact
                                    std::to_string(w) + " is normal to it");
         }
     }
+
+    /// The glue-state entry of constraint row k with its current gamma and
+    /// lambda. Wall rows store the particle first and the wall's key second
+    /// (the constraint system numbers walls after the n particles).
+    GlueState::Entry
+    glue_entry(const ConstraintSystem &system,
+               const std::size_t       k,
+               const std::uint32_t     n)
+    {
+      GlueState::Entry e;
+      if (system.first(k) >= n)
+        {
+          e.first  = system.second(k);
+          e.second = GlueState::wall_key(system.first(k) - n);
+        }
+      else
+        {
+          e.first  = system.first(k);
+          e.second = system.second(k);
+        }
+      e.gamma  = system.gamma(k);
+      e.lambda = system.lambda(k);
+      return e;
+    }
   } // namespace
 
 
@@ -504,22 +528,7 @@ namespace Fidus::Contact
         std::vector<GlueState::Entry> entries;
         entries.reserve(system.size());
         for (std::size_t k = 0; k < system.size(); ++k)
-          {
-            GlueState::Entry e;
-            if (system.first(k) >= n)
-              {
-                e.first  = system.second(k);
-                e.second = GlueState::wall_key(system.first(k) - n);
-              }
-            else
-              {
-                e.first  = system.first(k);
-                e.second = system.second(k);
-              }
-            e.gamma  = system.gamma(k);
-            e.lambda = system.lambda(k);
-            entries.push_back(e);
-          }
+          entries.push_back(glue_entry(system, k, n));
         glue.rebuild(std::move(entries));
       }
 
@@ -530,18 +539,9 @@ namespace Fidus::Contact
     unsigned int n_active = 0;
     for (std::size_t k = 0; k < system.size(); ++k)
       {
-        GlueState::Entry e;
-        if (system.first(k) >= n)
-          {
-            e.first  = system.second(k);
-            e.second = GlueState::wall_key(system.first(k) - n);
-          }
-        else
-          {
-            e.first  = system.first(k);
-            e.second = system.second(k);
-          }
-        e.lambda = system.lambda(k);
+        GlueState::Entry e = glue_entry(system, k, n);
+        // Only gluey contacts keep a glue variable from step to step.
+        e.gamma = 0.;
         if (settings.model == Model::gluey)
           {
             e.gamma = std::min(0., system.gamma(k) - dt * e.lambda);

@@ -8,6 +8,7 @@
 #include <fidus/contact/contact_projector.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/shear_rate.h>
+#include <fidus/core/warning_log.h>
 #include <fidus/fluid/boundary_velocity.h>
 #include <fidus/fluid/exact_rigid_inclusion.h>
 #include <fidus/fluid/stokes_solver.h>
@@ -296,6 +297,11 @@ namespace Fidus
 
     typename StokesSolver<dim>::Statistics fluid_stats;
     bool                                   remeshed = false;
+    // Step counter; the fluid predictor's warnings name it.
+    unsigned int step = 0;
+    // Repeated warnings are written in full the first ten times per kind,
+    // then counted (see WarningLog).
+    WarningLog warnings(std::cerr, root);
 
     // Fluid predictor at the current state: U, W at positions X, time t.
     auto compute_velocities = [&](const double t) {
@@ -347,16 +353,22 @@ namespace Fidus
         if (!fluid_stats.uzawa_converged)
           {
             ++summary.uzawa_failures;
-            std::cerr << "fidus: warning: the Uzawa loop stopped after "
-                      << fluid_stats.uzawa_iterations
-                      << " iterations at rigidity residual "
-                      << fluid_stats.rigidity_residual << " > "
-                      << prm.rigidity_tolerance
-                      << (fluid_stats.uzawa_stalled ?
-                            " (no progress in the last iteration; "
-                            "Fluid/Rigidity tolerance)" :
-                            " (Fluid/Maximum Uzawa iterations)")
-                      << std::endl;
+            std::ostringstream m;
+            m << "step " << step << ", t = " << t
+              << ": the Uzawa loop stopped after "
+              << fluid_stats.uzawa_iterations
+              << (fluid_stats.uzawa_iterations == 1 ? " iteration" :
+                                                      " iterations")
+              << " at rigidity residual " << fluid_stats.rigidity_residual
+              << " > " << prm.rigidity_tolerance
+              << (fluid_stats.uzawa_stalled ?
+                    " (no progress in the last iteration; "
+                    "Fluid/Rigidity tolerance)" :
+                    " (Fluid/Maximum Uzawa iterations)");
+            warnings.warn("rigidity not reached",
+                          m.str(),
+                          step,
+                          fluid_stats.rigidity_residual);
           }
       }
       {
@@ -475,8 +487,7 @@ namespace Fidus
     };
 
     // Step 0: the initial state.
-    double       t    = 0.;
-    unsigned int step = 0;
+    double t = 0.;
     compute_velocities(t);
     write_step(step, t, 0.);
 
@@ -568,11 +579,15 @@ namespace Fidus
               if (!cst.converged)
                 {
                   ++summary.contact_failures;
-                  std::cerr << "fidus: warning: the contact projection at step "
-                            << step + 1 << " did not converge: constraint "
-                            << "violation " << cst.residual << " > "
-                            << cs.tolerance << " after " << cst.iterations
-                            << " iterations" << std::endl;
+                  std::ostringstream m;
+                  m << "the contact projection at step " << step + 1
+                    << " did not converge: constraint violation "
+                    << cst.residual << " > " << cs.tolerance << " after "
+                    << cst.iterations << " iterations";
+                  warnings.warn("contact projection not converged",
+                                m.str(),
+                                step + 1,
+                                cst.residual);
                 }
             }
           catch (const Contact::ContactError &e)
@@ -663,6 +678,7 @@ namespace Fidus
         write_step(step, t, dt);
       }
 
+    warnings.summary();
     summary.n_steps      = step;
     summary.final_time   = t;
     summary.positions    = X;
