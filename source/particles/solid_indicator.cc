@@ -4,6 +4,38 @@
 
 namespace Fidus
 {
+  namespace
+  {
+    /**
+     * Calls @p f for every bin index vector b with lo <= b <= hi
+     * (componentwise), the first coordinate running fastest. Used both to
+     * file a particle into the bins it overlaps and to collect the
+     * particles near a point.
+     */
+    template <int dim, typename F>
+    void
+    for_each_bin(const std::array<int, dim> &lo,
+                 const std::array<int, dim> &hi,
+                 const F                    &f)
+    {
+      std::array<int, dim> b = lo;
+      while (true)
+        {
+          f(b);
+          unsigned int d = 0;
+          for (; d < dim; ++d)
+            {
+              if (++b[d] <= hi[d])
+                break;
+              b[d] = lo[d];
+            }
+          if (d == dim)
+            return;
+        }
+    }
+  } // namespace
+
+
   template <int dim>
   void
   SolidIndicator<dim>::reinit(const std::vector<std::array<double, 3>> &pos,
@@ -97,20 +129,9 @@ namespace Fidus
                          0,
                          n_bins[d] - 1);
           }
-        std::array<int, dim> b = lo;
-        while (true)
-          {
-            bins[bin_index(b)].push_back(i);
-            unsigned int d = 0;
-            for (; d < dim; ++d)
-              {
-                if (++b[d] <= hi[d])
-                  break;
-                b[d] = lo[d];
-              }
-            if (d == dim)
-              break;
-          }
+        for_each_bin<dim>(lo, hi, [&](const std::array<int, dim> &b) {
+          bins[bin_index(b)].push_back(i);
+        });
       }
   }
 
@@ -147,22 +168,11 @@ namespace Fidus
         lo[d] = std::max(lo[d], 0);
         hi[d] = std::min(hi[d], n_bins[d] - 1);
       }
-    std::array<int, dim> b = lo;
-    while (true)
-      {
-        for (const unsigned int i : bins[bin_index(b)])
-          if (x.distance(centers[i]) < r + radii[i])
-            out.push_back(i);
-        unsigned int d = 0;
-        for (; d < dim; ++d)
-          {
-            if (++b[d] <= hi[d])
-              break;
-            b[d] = lo[d];
-          }
-        if (d == dim)
-          break;
-      }
+    for_each_bin<dim>(lo, hi, [&](const std::array<int, dim> &b) {
+      for (const unsigned int i : bins[bin_index(b)])
+        if (x.distance(centers[i]) < r + radii[i])
+          out.push_back(i);
+    });
     // A particle spanning several bins is found once per bin.
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
