@@ -8,14 +8,14 @@
 # run, the wall time, and whether any value was NaN.
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
-#          [strain, default 2] [N, default 24] [phi, default 0.1] \
-#          [max level, default 4] [time step, default 0.05]
+#          [strain, default 1] [N, default 24] [phi, default 0.25] \
+#          [max level, default 4] [time step, default 0.1]
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
 fidus="${FIDUS:-$top/build-release/fidus}"
-model="${1:-gluey}"; strain="${2:-2}"; n="${3:-24}"; phi="${4:-0.1}"
-level="${5:-4}"; dt="${6:-0.05}"
+model="${1:-gluey}"; strain="${2:-1}"; n="${3:-24}"; phi="${4:-0.25}"
+level="${5:-4}"; dt="${6:-0.1}"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
 
 # Random sequential addition, minimum image in x and z, clear of the y walls.

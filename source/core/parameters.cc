@@ -297,8 +297,10 @@ namespace Fidus
           "communication between the sweeps and does not depend on the "
           "number of MPI ranks. ILU (use 1 sweep) factorises each rank's "
           "block: on 1-2 ranks it needs up to 23 % fewer iterations and is up "
-          "to 40 % faster in 3D; being block Jacobi across ranks, it is "
-          "expected to weaken on many ranks (not measured; doc/fluid.md).");
+          "to 40 % faster in 3D for one particle, but 2.3 times slower "
+          "for 24 spheres at volume fraction 0.25; being block Jacobi "
+          "across ranks, it is expected to weaken on many ranks (not "
+          "measured; doc/fluid.md).");
       }
       prm.leave_subsection();
     }
