@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Command-line behaviour of fidus: every bad input gets one clear message that
 # names the entry and what is allowed, a non-zero exit status, and nothing is
-# written. Usage: run_cli_tests.sh path/to/fidus path/to/this/folder
+# written; repeated warnings are written once (rank 0), ten in full, then
+# summarised. Usage: run_cli_tests.sh path/to/fidus path/to/this/folder
 set -u
 fidus="$1"
 here="$2"
@@ -110,6 +111,29 @@ status=$?
 if [ $status -eq 2 ] && grep -q "particle 0 reached the box face x = 1.*in/outflow face" stderr.txt \
    && [ "$(tail -1 out/statistics.csv | cut -d, -f1)" -ge 10 ]; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: leaving the box (status $status)"; cat stderr.txt; fi
+
+# Repeated warnings on 2 MPI ranks: one copy only (rank 0); the first ten of
+# a kind in full, each naming its step, then one summary line whose count
+# is the number of steps and whose worst value and step are those of the
+# largest rigidity residual in statistics.csv.
+{ base | sed 's/End time = 0/End time = 1.1\n  set Time step = 0.1/';
+  printf 'subsection Fluid\n  set Rigidity tolerance = 1e-9\n  set Maximum Uzawa iterations = 1\nend\n';
+  printf 'subsection Mesh refinement\n  set Maximum level = 5\nend\n'; } > warn.prm
+rm -rf "$work/out"
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+  mpirun -np 2 "$fidus" warn.prm > /dev/null 2> stderr.txt
+status=$?
+worst=$(awk -F, 'NR > 1 && (NR == 2 || $8 > w) { w = $8; s = $1 } END { printf "%.6g at step %d", w, s }' out/statistics.csv)
+steps=$(($(grep -c . out/statistics.csv) - 1))
+full_ok=1
+for k in 0 1 2 3 4 5 6 7 8 9; do
+  [ "$(grep -c "^fidus: warning: step $k, t = .*the Uzawa loop stopped after 1 iteration " stderr.txt)" -eq 1 ] || full_ok=0
+done
+if [ $status -eq 0 ] && [ $steps -eq 12 ] && [ $full_ok = 1 ] \
+   && [ "$(grep -c "^fidus: warning:" stderr.txt)" -eq 11 ] \
+   && grep -q "^fidus: warning: step 9, .*\[10 such warnings (rigidity not reached); further ones are counted" stderr.txt \
+   && grep -q "^fidus: warning: 12 warnings (rigidity not reached) in this run, 10 of them written above; the largest value was $worst$" stderr.txt; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: repeated warnings on 2 ranks (status $status, steps $steps, expected worst $worst)"; cat stderr.txt; fi
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
