@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace
@@ -23,6 +24,8 @@ namespace
          "Options:\n"
          "  --validate          parse and check the file, print any problem,\n"
          "                      exit non-zero if there is one\n"
+         "  --resume            continue from the newest checkpoint in the\n"
+         "                      Output directory, up to the file's End time\n"
          "  --print-parameters  print every entry with its default and\n"
          "                      documentation, in .prm form\n"
          "  --help              this text\n";
@@ -38,6 +41,7 @@ main(int argc, char **argv)
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   bool        validate_only = false;
+  bool        resume        = false;
   std::string input;
   for (int i = 1; i < argc; ++i)
     {
@@ -60,6 +64,8 @@ main(int argc, char **argv)
         }
       else if (arg == "--validate")
         validate_only = true;
+      else if (arg == "--resume")
+        resume = true;
       else if (!arg.empty() && arg[0] == '-')
         {
           if (root)
@@ -101,6 +107,11 @@ main(int argc, char **argv)
                       << parameters.n_particles() << " particles)\n";
           return 0;
         }
+      // A resumed run checks its checkpoint before it writes anything.
+      std::unique_ptr<Checkpoint::ResumePoint> resume_point;
+      if (resume)
+        resume_point = std::make_unique<Checkpoint::ResumePoint>(
+          Checkpoint::find_and_check(parameters));
       if (root)
         {
           std::filesystem::create_directories(parameters.output_directory);
@@ -109,7 +120,12 @@ main(int argc, char **argv)
           out << used.str();
         }
       MPI_Barrier(MPI_COMM_WORLD);
-      run_simulation(parameters);
+      const RunSummary summary = run_simulation(parameters, resume_point.get());
+      // Stopped by a signal after writing a checkpoint: the shell's
+      // convention for a program ended by that signal (128 + number), so
+      // that a job script sees that the End time was not reached.
+      if (summary.stop_signal != 0)
+        return 128 + summary.stop_signal;
     }
   catch (const InputError &e)
     {

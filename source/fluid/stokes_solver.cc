@@ -3,6 +3,7 @@
 #include <cmath>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
@@ -19,6 +20,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/stokes_solver.h>
+#include <fidus/mesh/canonical_cell_order.h>
 #include <limits>
 #include <sstream>
 
@@ -55,6 +57,7 @@ namespace Fidus
   template <int dim>
   StokesSolver<dim>::~StokesSolver()
   {
+    checkpoint_transfer.reset();
     preconditioners.reset();
     dof_handler.clear();
   }
@@ -72,6 +75,48 @@ namespace Fidus
 
   template <int dim>
   void
+  StokesSolver<dim>::prepare_for_checkpoint()
+  {
+    // The multiplier is saved even when it is not a valid warm start: the
+    // file layout then does not depend on the state, and the flag saved
+    // with the run state decides whether it is used.
+    checkpoint_transfer = std::make_unique<
+      parallel::distributed::
+        SolutionTransfer<dim, TrilinosWrappers::MPI::BlockVector>>(dof_handler);
+    checkpoint_transfer->prepare_for_serialization(multiplier);
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::finish_checkpoint()
+  {
+    checkpoint_transfer.reset();
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::load_from_checkpoint(
+    const std::vector<unsigned int>    &periodic,
+    const std::set<types::boundary_id> &dirichlet,
+    const bool                          multiplier_is_warm_start)
+  {
+    setup_dofs(periodic, dirichlet);
+    parallel::distributed::SolutionTransfer<dim,
+                                            TrilinosWrappers::MPI::BlockVector>
+      transfer(dof_handler);
+    transfer.deserialize(distributed_multiplier);
+    multiplier       = distributed_multiplier;
+    multiplier_valid = multiplier_is_warm_start;
+  }
+
+
+
+  template <int dim>
+  void
   StokesSolver<dim>::setup_dofs(const std::vector<unsigned int>    &periodic,
                                 const std::set<types::boundary_id> &dirichlet)
   {
@@ -80,6 +125,12 @@ namespace Fidus
     preconditioners     = std::make_unique<Preconditioners>();
 
     dof_handler.distribute_dofs(fe);
+    // Number the DoFs along the forest (z-order) before splitting them by
+    // block. distribute_dofs() follows the order in which cells are stored,
+    // which depends on the refinement history; the forest depends only on
+    // the mesh. A mesh loaded from a checkpoint then gets the numbering, the
+    // AMG aggregates and therefore the numbers of the run that wrote it.
+    DoFRenumbering::hierarchical(dof_handler);
     std::vector<unsigned int> block_component(dim + 1, 0);
     block_component[dim] = 1;
     DoFRenumbering::component_wise(dof_handler, block_component);
@@ -98,6 +149,7 @@ namespace Fidus
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
     make_constraints(Functions::ZeroFunction<dim>(dim + 1));
+    cells = canonical_cell_order(dof_handler);
 
     // The system couples everything but pressure with pressure; the
     // preconditioner matrix holds only the pressure mass.
@@ -210,10 +262,8 @@ namespace Fidus
       is_velocity[k] = fe.system_to_component_index(k).first < dim;
 
     const double r = settings.penalty_factor;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : cells)
       {
-        if (cell->is_artificial())
-          continue;
         solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
         if (!cell->is_locally_owned())
           {
@@ -369,7 +419,7 @@ namespace Fidus
     std::vector<SymmetricTensor<2, dim>> eps_lambda(n_q);
     std::vector<unsigned int>            cands;
 
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : cells)
       if (cell->is_locally_owned())
         {
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
@@ -414,7 +464,7 @@ namespace Fidus
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<unsigned int>            cands;
     double                               in_solid = 0, total = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : cells)
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);

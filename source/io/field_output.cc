@@ -2,6 +2,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
 #include <fidus/io/field_output.h>
+#include <fidus/io/pvd_records.h>
 #include <fstream>
 
 namespace Fidus
@@ -81,6 +82,20 @@ namespace Fidus
         DataOutBase::write_pvd_record(pvd, records);
       }
   }
+
+  template <int dim>
+  void
+  FieldOutput<dim>::resume(const unsigned int last_step, const bool writer)
+  {
+    records = read_pvd_records(directory + "/solution.pvd", last_step);
+    if (writer)
+      {
+        std::ofstream pvd(directory + "/solution.pvd");
+        DataOutBase::write_pvd_record(pvd, records);
+      }
+  }
+
+
 
   template class FieldOutput<2>;
   template class FieldOutput<3>;

@@ -1,5 +1,6 @@
 #include <fidus/core/input_error.h>
 #include <fidus/io/particle_output.h>
+#include <fidus/io/pvd_records.h>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -60,6 +61,25 @@ namespace Fidus
     out << "</DataArray>\n</PointData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
 
     records.emplace_back(time, name.str());
+    write_collection();
+  }
+
+
+
+  void
+  ParticleOutput::resume(const unsigned int last_step)
+  {
+    if (!active)
+      return;
+    records = read_pvd_records(directory + "/particles.pvd", last_step);
+    write_collection();
+  }
+
+
+
+  void
+  ParticleOutput::write_collection() const
+  {
     std::ofstream pvd(directory + "/particles.pvd");
     pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" "
            "version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n"

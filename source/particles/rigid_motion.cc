@@ -2,6 +2,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
 #include <fidus/core/input_error.h>
+#include <fidus/mesh/canonical_cell_order.h>
 #include <fidus/particles/rigid_motion.h>
 
 namespace Fidus
@@ -25,7 +26,9 @@ namespace Fidus
     std::vector<Tensor<1, dim>>      u(quadrature.size());
     std::vector<unsigned int>        cands;
 
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    // In mesh order, so that the sums are the same on a mesh loaded from a
+    // checkpoint (canonical_cell_order).
+    for (const auto &cell : canonical_cell_order(dof_handler))
       if (cell->is_locally_owned())
         {
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);

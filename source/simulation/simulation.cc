@@ -1,78 +1,161 @@
 #include <algorithm>
 #include <cmath>
-#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
-#include <deal.II/distributed/tria.h>
 #include <fidus/contact/contact_error.h>
-#include <fidus/contact/contact_projector.h>
 #include <fidus/core/input_error.h>
-#include <fidus/core/shear_rate.h>
-#include <fidus/core/warning_log.h>
-#include <fidus/fluid/boundary_velocity.h>
-#include <fidus/fluid/exact_rigid_inclusion.h>
-#include <fidus/fluid/stokes_solver.h>
-#include <fidus/io/csv_writer.h>
-#include <fidus/io/field_output.h>
-#include <fidus/io/particle_output.h>
 #include <fidus/mesh/box_mesh.h>
-#include <fidus/mesh/mesh_refiner.h>
 #include <fidus/particles/rigid_motion.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/simulation/progress_line.h>
 #include <fidus/simulation/simulation.h>
+#include <fidus/simulation/stop_request.h>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
-#include <memory>
 #include <sstream>
 
 namespace Fidus
 {
-  using Vec3 = std::array<double, 3>;
+  using Vec3 = RunState::Vec3;
 
   namespace
   {
-    Contact::Model
-    contact_model(const ContactModel m)
+    Contact::Settings
+    contact_settings_of(const Parameters &prm, const unsigned int dim)
     {
-      return m == ContactModel::none      ? Contact::Model::none :
-             m == ContactModel::inelastic ? Contact::Model::inelastic :
-                                            Contact::Model::gluey;
+      double a_min = 1.;
+      if (!prm.radii.empty())
+        a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
+      Contact::Settings cs;
+      cs.dimension         = dim;
+      cs.model             = prm.contact_model == ContactModel::none ?
+                               Contact::Model::none :
+                             prm.contact_model == ContactModel::inelastic ?
+                               Contact::Model::inelastic :
+                               Contact::Model::gluey;
+      cs.solver            = prm.dual_solver == "projected gradient" ?
+                               Contact::DualSolver::projected_gradient :
+                             prm.dual_solver == "accelerated projected gradient" ?
+                               Contact::DualSolver::accelerated_projected_gradient :
+                               Contact::DualSolver::projected_gauss_seidel;
+      cs.tolerance         = prm.contact_tolerance * a_min;
+      cs.alert_distance    = prm.alert_distance * a_min;
+      cs.overlap_tolerance = 2. * cs.tolerance;
+      return cs;
     }
 
-    Contact::DualSolver
-    dual_solver(const std::string &name)
-    {
-      return name == "projected gradient" ?
-               Contact::DualSolver::projected_gradient :
-             name == "accelerated projected gradient" ?
-               Contact::DualSolver::accelerated_projected_gradient :
-               Contact::DualSolver::projected_gauss_seidel;
-    }
-
-    std::string
-    format_time(const double seconds)
-    {
-      std::ostringstream s;
-      const long         t = std::lround(seconds);
-      if (t >= 3600)
-        s << t / 3600 << "h" << std::setw(2) << std::setfill('0')
-          << (t % 3600) / 60 << "m";
-      else if (t >= 60)
-        s << t / 60 << "m" << std::setw(2) << std::setfill('0') << t % 60
-          << "s";
-      else
-        s << std::fixed << std::setprecision(1) << seconds << "s";
-      return s.str();
-    }
+    const std::vector<std::string> particle_columns   = {"step",
+                                                         "time",
+                                                         "id",
+                                                         "x",
+                                                         "y",
+                                                         "z",
+                                                         "ux",
+                                                         "uy",
+                                                         "uz",
+                                                         "omega_x",
+                                                         "omega_y",
+                                                         "omega_z",
+                                                         "radius"};
+    const std::vector<std::string> statistics_columns = {"step",
+                                                         "time",
+                                                         "dt",
+                                                         "cells",
+                                                         "dofs",
+                                                         "uzawa_iterations",
+                                                         "linear_iterations",
+                                                         "rigidity_residual",
+                                                         "min_gap",
+                                                         "active_contacts",
+                                                         "glued_contacts",
+                                                         "wall_seconds",
+                                                         "remeshed",
+                                                         "contact_iterations"};
   } // namespace
 
 
 
   template <int dim>
-  Simulation<dim>::Simulation(const Parameters &parameters)
+  Simulation<dim>::Simulation(const Parameters              &parameters,
+                              const Checkpoint::ResumePoint *resume_point)
     : prm(parameters)
-  {}
+    , resume(resume_point)
+    , comm(MPI_COMM_WORLD)
+    , root(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    , pcout(std::cout, root && parameters.verbosity != Verbosity::quiet)
+    , timer(std::make_unique<TimerOutput>(MPI_COMM_WORLD,
+                                          pcout,
+                                          TimerOutput::never,
+                                          TimerOutput::wall_times))
+    , box(parameters)
+    , shear(parameters.shear_rate)
+    , fictitious(parameters.fluid_model == FluidModel::fictitious_domain)
+    , n(parameters.n_particles())
+    , contact_settings(contact_settings_of(parameters, dim))
+    , projector(contact_settings)
+    , boundary(parameters.boundary_condition, box.lo[1], box.hi[1])
+    , warnings(std::cerr, root)
+  {
+    projector.set_walls(box.walls);
+    projector.set_periodicity(box.periods);
+
+    if (root)
+      std::filesystem::create_directories(prm.output_directory);
+    MPI_Barrier(comm);
+
+    if (!fictitious)
+      return;
+    tria = std::make_unique<parallel::distributed::Triangulation<dim>>(
+      comm,
+      typename Triangulation<dim>::MeshSmoothing(
+        Triangulation<dim>::smoothing_on_refinement |
+        Triangulation<dim>::smoothing_on_coarsening));
+    // A checkpoint's forest is loaded onto the coarse mesh; a new run
+    // starts from the globally refined one.
+    create_box_mesh(*tria,
+                    box.lo,
+                    box.hi,
+                    box.periodic,
+                    resume ? 0 : prm.initial_global_refinement);
+
+    typename StokesSolver<dim>::Settings ss;
+    ss.degree                    = prm.velocity_degree;
+    ss.viscosity                 = prm.viscosity;
+    ss.penalty_factor            = prm.penalty_factor;
+    ss.rigidity_tolerance        = prm.rigidity_tolerance;
+    ss.max_uzawa_iterations      = prm.max_uzawa_iterations;
+    ss.linear_tolerance          = prm.linear_tolerance;
+    ss.max_cheap_iterations      = prm.max_cheap_iterations;
+    ss.max_linear_iterations     = prm.max_linear_iterations;
+    ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
+    ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
+    ss.amg_smoother_type         = prm.amg_smoother_type;
+    ss.reuse_multiplier          = prm.reuse_multiplier;
+    ss.verbose                   = prm.verbosity == Verbosity::verbose;
+    solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
+
+    typename MeshRefiner<dim>::Settings ms;
+    ms.minimum_level = prm.minimum_level;
+    ms.maximum_level = prm.maximum_level;
+    ms.band          = prm.interface_band;
+    ms.gap_distance  = prm.gap_refinement_distance;
+    refiner          = std::make_unique<MeshRefiner<dim>>(ms);
+
+    if (prm.boundary_condition == BoundaryCondition::exact_rigid_inclusion)
+      {
+        Point<dim> c;
+        for (unsigned int d = 0; d < dim; ++d)
+          c[d] = prm.positions[0][d];
+        exact = std::make_unique<ExactRigidInclusion<dim>>(c,
+                                                           prm.radii[0],
+                                                           shear(0.),
+                                                           prm.viscosity);
+      }
+  }
+
+
+
+  template <int dim>
+  Simulation<dim>::~Simulation() = default;
 
 
 
@@ -80,622 +163,681 @@ namespace Fidus
   RunSummary
   Simulation<dim>::run()
   {
-    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-    ConditionalOStream pcout(std::cout,
-                             root && prm.verbosity != Verbosity::quiet);
-    // The timer is destroyed before an error propagates, so that it neither
-    // communicates nor prints while the run stops.
-    auto timer = std::make_unique<TimerOutput>(MPI_COMM_WORLD,
-                                               pcout,
-                                               TimerOutput::never,
-                                               TimerOutput::wall_times);
+    // SIGTERM / SIGINT / SIGUSR1 finish the step and checkpoint.
+    const StopRequest stop_request;
     try
       {
-        const RunSummary summary = run_steps(*timer);
-        if (prm.verbosity != Verbosity::quiet)
-          timer->print_summary();
-        return summary;
+        if (resume)
+          resume_from_checkpoint();
+        else
+          start();
+
+        while (!finished())
+          {
+            const double dt = choose_time_step();
+            extrapolate_velocities(dt);
+            project_onto_admissible_set(dt);
+            advance_particles(dt);
+            predict_velocities();
+            write_output(dt);
+            if (checkpoint_or_stop())
+              break;
+          }
       }
     catch (...)
       {
+        // The timer is destroyed before the error propagates, so that it
+        // neither communicates nor prints while the run stops.
         timer.reset();
         throw;
+      }
+
+    warnings.summary();
+    if (prm.verbosity != Verbosity::quiet)
+      timer->print_summary();
+
+    RunSummary s              = exact_errors;
+    s.n_steps                 = state.step;
+    s.final_time              = state.time;
+    s.positions               = state.X;
+    s.velocities              = state.U;
+    s.omegas                  = state.W;
+    s.min_gap                 = state.totals.min_gap;
+    s.min_normalised_distance = state.totals.min_normalised_distance;
+    s.max_uzawa_iterations    = state.totals.max_uzawa_iterations;
+    s.max_linear_iterations   = state.totals.max_linear_iterations;
+    s.max_rigidity_residual   = state.totals.max_rigidity_residual;
+    s.uzawa_failures          = state.totals.uzawa_failures;
+    s.contact_failures        = state.totals.contact_failures;
+    s.max_contact_iterations  = state.totals.max_contact_iterations;
+    s.n_cells                 = fictitious ? tria->n_global_active_cells() : 0;
+    s.n_dofs                  = fictitious ? solver->n_dofs() : 0;
+    s.wall_seconds            = elapsed_wall_seconds();
+    s.stop_signal             = stop_signal;
+    return s;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::start()
+  {
+    state.initialise(prm.positions);
+    particles_csv =
+      std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
+                                  particle_columns,
+                                  root);
+    statistics_csv =
+      std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
+                                  statistics_columns,
+                                  root);
+    particle_output =
+      std::make_unique<ParticleOutput>(prm.output_directory,
+                                       root &&
+                                         prm.particle_output_interval > 0);
+    if (fictitious && prm.field_output_interval > 0)
+      field_output = std::make_unique<FieldOutput<dim>>(prm.output_directory);
+
+    predict_velocities();
+    write_output(0.);
+    if (exact)
+      report_exact_solution_errors();
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::resume_from_checkpoint()
+  {
+    state = resume->state;
+    warnings.restore(state.warnings);
+    projector.restore_glue(state.glue);
+    if (fictitious)
+      {
+        TimerOutput::Scope scope(*timer, "checkpoint");
+        tria->load(Checkpoint::mesh_file(resume->folder));
+        solver->load_from_checkpoint(box.periodic,
+                                     box.dirichlet_ids,
+                                     state.multiplier_valid);
+      }
+    // Rows and collection entries after the checkpoint's step are dropped:
+    // those steps are computed again.
+    particles_csv =
+      std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
+                                  particle_columns,
+                                  root,
+                                  state.step);
+    statistics_csv =
+      std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
+                                  statistics_columns,
+                                  root,
+                                  state.step);
+    particle_output =
+      std::make_unique<ParticleOutput>(prm.output_directory,
+                                       root &&
+                                         prm.particle_output_interval > 0);
+    particle_output->resume(state.step);
+    if (fictitious && prm.field_output_interval > 0)
+      {
+        field_output = std::make_unique<FieldOutput<dim>>(prm.output_directory);
+        field_output->resume(state.step, root);
+      }
+    pcout << "fidus: resumed from " << resume->folder << " at step "
+          << state.step << ", t = " << state.time << ", on "
+          << Utilities::MPI::n_mpi_processes(comm)
+          << (Utilities::MPI::n_mpi_processes(comm) == 1 ? " rank" : " ranks")
+          << std::endl;
+  }
+
+
+
+  template <int dim>
+  bool
+  Simulation<dim>::finished() const
+  {
+    return state.time >= prm.end_time * (1. - 1e-12);
+  }
+
+
+
+  template <int dim>
+  double
+  Simulation<dim>::choose_time_step() const
+  {
+    double dt = prm.time_step;
+    if (prm.adaptive_time_step)
+      {
+        double umax = 0;
+        for (const auto &v : state.U)
+          umax =
+            std::max(umax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+        const double h = fictitious ? box.h_finest : box.a_min;
+        dt             = umax > 0 ?
+                           std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
+                           prm.maximum_time_step;
+      }
+    // The last step ends at the End time. A remainder that differs from
+    // the step only by round-off (an End time that is a multiple of a fixed
+    // step) is taken as the full step, so that a run makes the same steps
+    // as a longer one, and one resumed with a later End time continues
+    // bit-identically.
+    const double remaining = prm.end_time - state.time;
+    return dt <= remaining * (1. + 1e-9) ? dt : remaining;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::extrapolate_velocities(const double dt)
+  {
+    // The Stokes problem is quasi-static and linear in the boundary data,
+    // so U is the shear rate times a field that depends on the positions
+    // only. Extrapolating U / shear and multiplying by the shear rate at
+    // the middle of the step is the same formula for a constant shear
+    // rate, and stays exact when the shear rate jumps at a step boundary (a
+    // reversal 't < T ? 1 : -1'), where plain AB2 would make one step with
+    // -2U: an O(dt) error that breaks the reversibility of Stokes flow,
+    // which is what the contact models are meant to keep.
+    const RunState &s      = state;
+    const double    beta   = s.have_history ? dt / (2. * s.dt_old) : 0.;
+    const double    g_now  = shear(s.time);
+    const double    g_old  = s.have_history ? shear(s.t_old) : g_now;
+    const double    g_mid  = shear(s.time + 0.5 * dt);
+    const bool      scaled = std::abs(g_now) > 0. && std::abs(g_old) > 0.;
+    const double    c_now  = scaled ? g_mid / g_now : 1.;
+    const double    c_old  = scaled ? g_mid / g_old : 1.;
+    u_star.resize(n);
+    w_star.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          u_star[i][d] =
+            (1. + beta) * c_now * s.U[i][d] - beta * c_old * s.U_old[i][d];
+          w_star[i][d] =
+            (1. + beta) * c_now * s.W[i][d] - beta * c_old * s.W_old[i][d];
+        }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::project_onto_admissible_set(const double dt)
+  {
+    TimerOutput::Scope scope(*timer, "contact");
+    const unsigned int next = state.step + 1;
+    try
+      {
+        const Contact::ProjectionStatistics cst =
+          projector.project(state.X, prm.radii, u_star, dt, u_corrected);
+        n_active           = cst.n_active;
+        n_glued            = cst.n_glued;
+        contact_iterations = cst.iterations;
+        state.totals.max_contact_iterations =
+          std::max(state.totals.max_contact_iterations, cst.iterations);
+        if (!cst.converged)
+          {
+            ++state.totals.contact_failures;
+            std::ostringstream m;
+            m << "the contact projection at step " << next
+              << " did not converge: constraint violation " << cst.residual
+              << " > " << contact_settings.tolerance << " after "
+              << cst.iterations << " iterations";
+            warnings.warn("contact projection not converged",
+                          m.str(),
+                          next,
+                          cst.residual);
+          }
+      }
+    catch (const Contact::ContactError &e)
+      {
+        throw RunError(std::string(e.what()) + " (at step " +
+                       std::to_string(next) +
+                       ", t = " + std::to_string(state.time) + ")");
       }
   }
 
 
 
   template <int dim>
-  RunSummary
-  Simulation<dim>::run_steps(TimerOutput &timer)
+  void
+  Simulation<dim>::advance_particles(const double dt)
   {
-    const MPI_Comm     comm = MPI_COMM_WORLD;
-    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-    const bool         root = rank == 0;
-    ConditionalOStream pcout(std::cout,
-                             root && prm.verbosity != Verbosity::quiet);
-    Timer              wall_clock;
+    RunState &s = state;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          s.X[i][d] += dt * u_corrected[i][d];
+        if (dim == 2)
+          s.angle[i] += dt * w_star[i][2];
+        else
+          {
+            // q <- q + dt/2 (0, w) q, renormalised.
+            auto        &q  = s.quaternion[i];
+            const double wx = w_star[i][0], wy = w_star[i][1],
+                         wz                = w_star[i][2];
+            const std::array<double, 4> dq = {
+              {-wx * q[1] - wy * q[2] - wz * q[3],
+               wx * q[0] + wy * q[3] - wz * q[2],
+               -wx * q[3] + wy * q[0] + wz * q[1],
+               wx * q[2] - wy * q[1] + wz * q[0]}};
+            double norm = 0;
+            for (unsigned int k = 0; k < 4; ++k)
+              {
+                q[k] += 0.5 * dt * dq[k];
+                norm += q[k] * q[k];
+              }
+            for (unsigned int k = 0; k < 4; ++k)
+              q[k] /= std::sqrt(norm);
+          }
+      }
+    s.U_old        = s.U;
+    s.W_old        = s.W;
+    s.dt_old       = dt;
+    s.t_old        = s.time;
+    s.have_history = true;
+    s.time += dt;
+    ++s.step;
 
+    // A particle whose centre crossed a periodic face comes back through
+    // the opposite face; the solid indicator keeps images of particles
+    // that straddle it, the contact module works with the minimum image.
+    box.wrap(s.X);
+
+    // A particle that reaches a face where it cannot stay stops the run.
+    const double tol = contact_settings.overlap_tolerance;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (!box.is_periodic[d] &&
+            (s.X[i][d] - prm.radii[i] < box.lo[d] - tol ||
+             s.X[i][d] + prm.radii[i] > box.hi[d] + tol))
+          {
+            const bool         low     = s.X[i][d] - prm.radii[i] < box.lo[d];
+            const char         axis[3] = {'x', 'y', 'z'};
+            std::ostringstream m;
+            m << "particle " << i << " reached the box face " << axis[d]
+              << " = " << (low ? box.lo[d] : box.hi[d]) << " at step " << s.step
+              << ", t = " << s.time << " (centre " << s.X[i][d] << ", radius "
+              << prm.radii[i] << "): ";
+            if (box.is_wall_axis[d])
+              m << "it crossed a wall (Contact/Walls = "
+                << (prm.walls ? "true" : "false") << ", Contact/Model "
+                << (prm.contact_model == ContactModel::none ? "none" : "")
+                << ")";
+            else
+              m << "it left through an in/outflow face";
+            m << "; output up to step " << s.step - 1 << " is written";
+            throw RunError(m.str());
+          }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::predict_velocities()
+  {
+    fluid_stats = typename StokesSolver<dim>::Statistics();
+    remeshed    = false;
+    if (!fictitious)
+      {
+        // Free-draining particles: the undisturbed shear at the centre.
+        const double g = shear(state.time);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            state.U[i] = {{g * (state.X[i][1] - box.y_mid), 0., 0.}};
+            state.W[i] = {{0., 0., -0.5 * g}};
+          }
+        return;
+      }
+    solid.reinit(state.X, prm.radii, box.lo, box.hi, box.is_periodic);
+    refine_mesh_if_particles_moved();
+    solve_fluid();
+    extract_rigid_motion();
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::refine_mesh_if_particles_moved()
+  {
+    TimerOutput::Scope scope(*timer, "mesh");
+    double             moved = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          d2 += std::pow(state.X[i][d] - state.X_at_remesh[i][d], 2);
+        moved = std::max(moved, std::sqrt(d2));
+      }
+    // Skip remeshing while no particle has left a fraction of the refined
+    // band: the mesh still resolves every surface.
+    if (state.mesh_ready &&
+        moved <= prm.remesh_fraction * prm.interface_band * box.h_finest)
+      return;
+    const unsigned int changes = refiner->adapt(*tria, solid);
+    if (changes > 0 || !state.mesh_ready)
+      {
+        solver->setup_dofs(box.periodic, box.dirichlet_ids);
+        remeshed = true;
+      }
+    state.X_at_remesh = state.X;
+    state.mesh_ready  = true;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::solve_fluid()
+  {
+    TimerOutput::Scope scope(*timer, "fluid");
+    boundary.set_shear_rate(shear(state.time));
+    fluid_stats =
+      solver->solve(solid,
+                    exact ? static_cast<const Function<dim> &>(*exact) :
+                            boundary);
+    if (fluid_stats.uzawa_converged)
+      return;
+    ++state.totals.uzawa_failures;
+    std::ostringstream m;
+    m << "step " << state.step << ", t = " << state.time
+      << ": the Uzawa loop stopped after " << fluid_stats.uzawa_iterations
+      << (fluid_stats.uzawa_iterations == 1 ? " iteration" : " iterations")
+      << " at rigidity residual " << fluid_stats.rigidity_residual << " > "
+      << prm.rigidity_tolerance
+      << (fluid_stats.uzawa_stalled ?
+            " (no progress in the last iteration; Fluid/Rigidity tolerance)" :
+            " (Fluid/Maximum Uzawa iterations)");
+    warnings.warn("rigidity not reached",
+                  m.str(),
+                  state.step,
+                  fluid_stats.rigidity_residual);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::extract_rigid_motion()
+  {
+    TimerOutput::Scope             scope(*timer, "rigid motion");
+    const std::vector<RigidMotion> motions =
+      compute_rigid_motions(solver->get_dof_handler(),
+                            solver->get_solution(),
+                            solid,
+                            solver->get_quadrature());
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        state.U[i] = motions[i].velocity;
+        state.W[i] = motions[i].omega;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::write_output(const double dt)
+  {
+    TimerOutput::Scope scope(*timer, "output");
+    const RunState    &s = state;
+    for (unsigned int i = 0; i < n; ++i)
+      particles_csv->write_row({double(s.step),
+                                s.time,
+                                double(i),
+                                s.X[i][0],
+                                s.X[i][1],
+                                s.X[i][2],
+                                s.U[i][0],
+                                s.U[i][1],
+                                s.U[i][2],
+                                s.W[i][0],
+                                s.W[i][1],
+                                s.W[i][2],
+                                prm.radii[i]});
+
+    double gap = std::numeric_limits<double>::infinity();
+    if (n > 0)
+      gap = Contact::ContactProjector::minimum_gap(s.X,
+                                                   prm.radii,
+                                                   box.walls,
+                                                   dim,
+                                                   n <= 200 ?
+                                                     1e3 * box.smallest_side :
+                                                     4. * box.a_max,
+                                                   box.periods);
+    RunTotals &totals = state.totals;
+    totals.min_gap    = std::min(totals.min_gap, gap);
+    if (n >= 2)
+      {
+        double d2 = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          d2 +=
+            std::pow(Contact::PairSearch::minimum_image(s.X[1][d] - s.X[0][d],
+                                                        box.periods[d]),
+                     2);
+        totals.min_normalised_distance =
+          std::min(totals.min_normalised_distance,
+                   std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
+      }
+    totals.max_uzawa_iterations =
+      std::max(totals.max_uzawa_iterations, fluid_stats.uzawa_iterations);
+    totals.max_linear_iterations =
+      std::max(totals.max_linear_iterations, fluid_stats.linear_iterations);
+    totals.max_rigidity_residual =
+      std::max(totals.max_rigidity_residual, fluid_stats.rigidity_residual);
+
+    const double cells =
+      fictitious ? double(tria->n_global_active_cells()) : 0.;
+    const double dofs = fictitious ? double(solver->n_dofs()) : 0.;
+    statistics_csv->write_row({double(s.step),
+                               s.time,
+                               dt,
+                               cells,
+                               dofs,
+                               double(fluid_stats.uzawa_iterations),
+                               double(fluid_stats.linear_iterations),
+                               fluid_stats.rigidity_residual,
+                               std::isfinite(gap) ? gap : 0.,
+                               double(n_active),
+                               double(n_glued),
+                               elapsed_wall_seconds(),
+                               double(remeshed),
+                               double(contact_iterations)});
+
+    if (field_output && s.step % prm.field_output_interval == 0)
+      field_output->write(*solver, solid, s.step, s.time);
+    if (prm.particle_output_interval > 0 &&
+        s.step % prm.particle_output_interval == 0)
+      particle_output->write(s.step,
+                             s.time,
+                             s.X,
+                             prm.radii,
+                             s.U,
+                             s.W,
+                             projector.glued_count_per_particle(n));
+
+    // Progress: every 'Progress interval' steps, or by wall clock (the
+    // first and the last step always).
+    const double now = wall_clock.wall_time();
+    const bool   due = prm.progress_interval > 0 ?
+                         s.step % prm.progress_interval == 0 :
+                         last_progress_wall < 0. ||
+                         now - last_progress_wall >= prm.progress_wall_interval;
+    if (due || finished())
+      {
+        last_progress_wall = now;
+        ProgressLine line;
+        line.step              = s.step;
+        line.time              = s.time;
+        line.dt                = dt;
+        line.gap               = std::isfinite(gap) ? gap : 0.;
+        line.fluid             = fictitious;
+        line.cells             = fictitious ? tria->n_global_active_cells() : 0;
+        line.uzawa             = fluid_stats.uzawa_iterations;
+        line.fgmres            = fluid_stats.linear_iterations;
+        line.rigidity_residual = fluid_stats.rigidity_residual;
+        line.active            = n_active;
+        line.glued             = n_glued;
+        line.eta               = s.time > 0 ?
+                                   elapsed_wall_seconds() / s.time * (prm.end_time - s.time) :
+                                   0.;
+        pcout << line.text() << std::endl;
+      }
+  }
+
+
+
+  template <int dim>
+  bool
+  Simulation<dim>::checkpoint_or_stop()
+  {
+    // One collective decision: the largest signal number any rank received
+    // (a batch system signals every rank, a user perhaps one), and the
+    // wall-clock interval measured on rank 0.
+    int local[2] = {StopRequest::signal_received(), 0};
+    if (root && prm.checkpoint_wall_interval > 0 &&
+        wall_clock.wall_time() - last_checkpoint_wall >=
+          prm.checkpoint_wall_interval)
+      local[1] = 1;
+    int global[2] = {0, 0};
+    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm);
+
+    const bool checkpoints_on =
+      prm.checkpoint_interval > 0 || prm.checkpoint_wall_interval > 0;
+    const bool due = global[0] != 0 || global[1] != 0 ||
+                     (prm.checkpoint_interval > 0 &&
+                      state.step % prm.checkpoint_interval == 0) ||
+                     (checkpoints_on && finished());
+    if (due)
+      write_checkpoint();
+    if (global[0] == 0)
+      return false;
+
+    stop_signal = global[0];
     if (root)
-      std::filesystem::create_directories(prm.output_directory);
+      std::cerr << "fidus: " << StopRequest::name(stop_signal)
+                << " received: stopped after step " << state.step
+                << ", t = " << state.time << ", with a checkpoint in "
+                << Checkpoint::folder(prm.output_directory, state.step)
+                << "; continue with 'fidus --resume' and the same parameter "
+                   "file"
+                << std::endl;
+    return true;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulation<dim>::write_checkpoint()
+  {
+    TimerOutput::Scope scope(*timer, "checkpoint");
+    Timer              clock;
+    const std::string  temporary =
+      Checkpoint::temporary_folder(prm.output_directory, state.step);
+    const std::string final_folder =
+      Checkpoint::folder(prm.output_directory, state.step);
+    if (root)
+      {
+        std::filesystem::remove_all(temporary);
+        std::filesystem::create_directories(temporary);
+      }
     MPI_Barrier(comm);
-
-    const bool fictitious = prm.fluid_model == FluidModel::fictitious_domain;
-    const unsigned int n  = prm.n_particles();
-    ShearRate          shear(prm.shear_rate);
-    Point<dim>         lo, hi;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        lo[d] = prm.lower_left[d];
-        hi[d] = prm.upper_right[d];
-      }
-    const double y_mid = 0.5 * (lo[1] + hi[1]);
-    double       a_min = std::numeric_limits<double>::max(), a_max = 0;
-    for (const double a : prm.radii)
-      {
-        a_min = std::min(a_min, a);
-        a_max = std::max(a_max, a);
-      }
-    if (n == 0)
-      a_min = a_max = 1.; // only scales tolerances then
-
-    // Which faces are periodic, walls, or in/outflow (numerics section 1).
-    std::vector<unsigned int> periodic;
-    if (prm.boundary_condition == BoundaryCondition::sliding_walls)
-      for (unsigned int d = 0; d < dim; ++d)
-        if (d != 1)
-          periodic.push_back(d);
-    std::array<bool, dim> is_periodic = {};
-    for (const unsigned int d : periodic)
-      is_periodic[d] = true;
-    std::set<types::boundary_id> dirichlet_ids;
-    for (unsigned int d = 0; d < dim; ++d)
-      if (std::find(periodic.begin(), periodic.end(), d) == periodic.end())
-        {
-          dirichlet_ids.insert(2 * d);
-          dirichlet_ids.insert(2 * d + 1);
-        }
-    // A face is a wall if the imposed velocity has no normal component:
-    // the y faces always; x and z faces for the cavity; z faces in linear
-    // shear (u = g (y - y_mid) e_x is tangential there).
-    std::vector<bool> is_wall_axis(dim, false);
-    if (prm.boundary_condition != BoundaryCondition::exact_rigid_inclusion)
-      for (unsigned int d = 0; d < dim; ++d)
-        is_wall_axis[d] =
-          d == 1 || prm.boundary_condition == BoundaryCondition::cavity ||
-          (prm.boundary_condition == BoundaryCondition::linear_shear && d == 2);
-    std::vector<Contact::Wall> walls;
-    if (prm.walls)
-      for (unsigned int d = 0; d < dim; ++d)
-        if (is_wall_axis[d])
-          for (const int side : {1, -1})
-            {
-              Contact::Wall w;
-              w.axis     = d;
-              w.side     = side;
-              w.position = side > 0 ? lo[d] : hi[d];
-              walls.push_back(w);
-            }
-
-    // Contact module.
-    Contact::Settings cs;
-    cs.dimension         = dim;
-    cs.model             = contact_model(prm.contact_model);
-    cs.solver            = dual_solver(prm.dual_solver);
-    cs.tolerance         = prm.contact_tolerance * a_min;
-    cs.alert_distance    = prm.alert_distance * a_min;
-    cs.overlap_tolerance = 2. * cs.tolerance;
-    Contact::ContactProjector projector(cs);
-    projector.set_walls(walls);
-    std::array<double, 3> periods = {{0., 0., 0.}};
-    for (const unsigned int d : periodic)
-      periods[d] = hi[d] - lo[d];
-    projector.set_periodicity(periods);
-
-    // Fluid: mesh, solver, refinement.
-    std::unique_ptr<parallel::distributed::Triangulation<dim>> tria;
-    std::unique_ptr<StokesSolver<dim>>                         solver;
-    std::unique_ptr<MeshRefiner<dim>>                          refiner;
-    std::unique_ptr<FieldOutput<dim>>                          field_output;
-    BoundaryVelocity<dim> boundary(prm.boundary_condition, lo[1], hi[1]);
-    std::unique_ptr<ExactRigidInclusion<dim>> exact;
-    double                                    smallest_side = hi[0] - lo[0];
-    for (unsigned int d = 1; d < dim; ++d)
-      smallest_side = std::min(smallest_side, hi[d] - lo[d]);
-    const double h_finest = smallest_side / std::pow(2., prm.maximum_level);
     if (fictitious)
       {
-        tria = std::make_unique<parallel::distributed::Triangulation<dim>>(
-          comm,
-          typename Triangulation<dim>::MeshSmoothing(
-            Triangulation<dim>::smoothing_on_refinement |
-            Triangulation<dim>::smoothing_on_coarsening));
-        create_box_mesh(*tria, lo, hi, periodic, prm.initial_global_refinement);
-        typename StokesSolver<dim>::Settings ss;
-        ss.degree                    = prm.velocity_degree;
-        ss.viscosity                 = prm.viscosity;
-        ss.penalty_factor            = prm.penalty_factor;
-        ss.rigidity_tolerance        = prm.rigidity_tolerance;
-        ss.max_uzawa_iterations      = prm.max_uzawa_iterations;
-        ss.linear_tolerance          = prm.linear_tolerance;
-        ss.max_cheap_iterations      = prm.max_cheap_iterations;
-        ss.max_linear_iterations     = prm.max_linear_iterations;
-        ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
-        ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
-        ss.amg_smoother_type         = prm.amg_smoother_type;
-        ss.reuse_multiplier          = prm.reuse_multiplier;
-        ss.verbose                   = prm.verbosity == Verbosity::verbose;
-        solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
-        typename MeshRefiner<dim>::Settings ms;
-        ms.minimum_level = prm.minimum_level;
-        ms.maximum_level = prm.maximum_level;
-        ms.band          = prm.interface_band;
-        ms.gap_distance  = prm.gap_refinement_distance;
-        refiner          = std::make_unique<MeshRefiner<dim>>(ms);
-        if (prm.field_output_interval > 0)
-          field_output =
-            std::make_unique<FieldOutput<dim>>(prm.output_directory);
-        if (prm.boundary_condition == BoundaryCondition::exact_rigid_inclusion)
-          {
-            Point<dim> c;
-            for (unsigned int d = 0; d < dim; ++d)
-              c[d] = prm.positions[0][d];
-            exact = std::make_unique<ExactRigidInclusion<dim>>(c,
-                                                               prm.radii[0],
-                                                               shear(0.),
-                                                               prm.viscosity);
-          }
+        solver->prepare_for_checkpoint();
+        tria->save(Checkpoint::mesh_file(temporary));
+        solver->finish_checkpoint();
       }
+    MPI_Barrier(comm);
 
-    // Output files.
-    CsvWriter      particles_csv(prm.output_directory + "/particles.csv",
-                            {"step",
-                                  "time",
-                                  "id",
-                                  "x",
-                                  "y",
-                                  "z",
-                                  "ux",
-                                  "uy",
-                                  "uz",
-                                  "omega_x",
-                                  "omega_y",
-                                  "omega_z",
-                                  "radius"},
-                            root);
-    CsvWriter      statistics_csv(prm.output_directory + "/statistics.csv",
-                             {"step",
-                                   "time",
-                                   "dt",
-                                   "cells",
-                                   "dofs",
-                                   "uzawa_iterations",
-                                   "linear_iterations",
-                                   "rigidity_residual",
-                                   "min_gap",
-                                   "active_contacts",
-                                   "glued_contacts",
-                                   "wall_seconds",
-                                   "remeshed",
-                                   "contact_iterations"},
-                             root);
-    ParticleOutput particle_output(prm.output_directory,
-                                   root && prm.particle_output_interval > 0);
-
-    // Particle state.
-    std::vector<Vec3>   X = prm.positions;
-    std::vector<Vec3>   U(n), U_old(n), W(n), W_old(n), u_star(n), u(n);
-    std::vector<double> angle(n, 0.);
-    std::vector<std::array<double, 4>> quaternion(n, {{1., 0., 0., 0.}});
-    std::vector<Vec3>                  X_at_remesh = X;
-    bool                               mesh_ready  = false;
-    SolidIndicator<dim>                solid;
-
-    RunSummary summary;
-    summary.min_gap                 = std::numeric_limits<double>::max();
-    summary.min_normalised_distance = std::numeric_limits<double>::max();
-
-    typename StokesSolver<dim>::Statistics fluid_stats;
-    bool                                   remeshed = false;
-    // Step counter; the fluid predictor's warnings name it.
-    unsigned int step = 0;
-    // Repeated warnings are written in full the first ten times per kind,
-    // then counted (see WarningLog).
-    WarningLog warnings(std::cerr, root);
-
-    // Fluid predictor at the current state: U, W at positions X, time t.
-    auto compute_velocities = [&](const double t) {
-      fluid_stats = typename StokesSolver<dim>::Statistics();
-      remeshed    = false;
-      if (!fictitious)
+    RunState saved            = state;
+    saved.multiplier_valid    = fictitious && solver->multiplier_is_valid();
+    saved.glue                = projector.glue_state().entries();
+    saved.warnings            = warnings.get_tallies();
+    saved.wall_seconds_before = elapsed_wall_seconds();
+    unsigned long long bytes  = 0;
+    std::string        error;
+    if (root)
+      try
         {
-          const double g = shear(t);
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              U[i] = {{g * (X[i][1] - y_mid), 0., 0.}};
-              W[i] = {{0., 0., -0.5 * g}};
-            }
-          return;
+          bytes = Checkpoint::commit(temporary,
+                                     final_folder,
+                                     prm,
+                                     saved,
+                                     Utilities::MPI::n_mpi_processes(comm));
         }
-      solid.reinit(X, prm.radii, lo, hi, is_periodic);
-      {
-        TimerOutput::Scope scope(timer, "mesh");
-        double             moved = 0;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            double d2 = 0;
-            for (unsigned int d = 0; d < dim; ++d)
-              d2 += std::pow(X[i][d] - X_at_remesh[i][d], 2);
-            moved = std::max(moved, std::sqrt(d2));
-          }
-        // Skip remeshing while no particle has left a fraction of the
-        // refined band: the mesh still resolves every surface.
-        if (!mesh_ready ||
-            moved > prm.remesh_fraction * prm.interface_band * h_finest)
-          {
-            const unsigned int changes = refiner->adapt(*tria, solid);
-            if (changes > 0 || !mesh_ready)
-              {
-                solver->setup_dofs(periodic, dirichlet_ids);
-                remeshed = true;
-              }
-            X_at_remesh = X;
-            mesh_ready  = true;
-          }
-      }
-      {
-        TimerOutput::Scope scope(timer, "fluid");
-        boundary.set_shear_rate(shear(t));
-        fluid_stats =
-          solver->solve(solid,
-                        exact ? static_cast<const Function<dim> &>(*exact) :
-                                boundary);
-        if (!fluid_stats.uzawa_converged)
-          {
-            ++summary.uzawa_failures;
-            std::ostringstream m;
-            m << "step " << step << ", t = " << t
-              << ": the Uzawa loop stopped after "
-              << fluid_stats.uzawa_iterations
-              << (fluid_stats.uzawa_iterations == 1 ? " iteration" :
-                                                      " iterations")
-              << " at rigidity residual " << fluid_stats.rigidity_residual
-              << " > " << prm.rigidity_tolerance
-              << (fluid_stats.uzawa_stalled ?
-                    " (no progress in the last iteration; "
-                    "Fluid/Rigidity tolerance)" :
-                    " (Fluid/Maximum Uzawa iterations)");
-            warnings.warn("rigidity not reached",
-                          m.str(),
-                          step,
-                          fluid_stats.rigidity_residual);
-          }
-      }
-      {
-        TimerOutput::Scope             scope(timer, "rigid motion");
-        const std::vector<RigidMotion> motions =
-          compute_rigid_motions(solver->get_dof_handler(),
-                                solver->get_solution(),
-                                solid,
-                                solver->get_quadrature());
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            U[i] = motions[i].velocity;
-            W[i] = motions[i].omega;
-          }
-      }
-    };
-
-    auto min_gap_of = [&](const std::vector<Vec3> &x) {
-      if (n == 0)
-        return std::numeric_limits<double>::infinity();
-      const double search = n <= 200 ? 1e3 * smallest_side : 4. * a_max;
-      return Contact::ContactProjector::minimum_gap(x,
-                                                    prm.radii,
-                                                    walls,
-                                                    dim,
-                                                    search,
-                                                    periods);
-    };
-
-    unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
-    auto         write_step = [&](const unsigned int step,
-                          const double       t,
-                          const double       dt) {
-      TimerOutput::Scope scope(timer, "output");
-      for (unsigned int i = 0; i < n; ++i)
-        particles_csv.write_row({double(step),
-                                 t,
-                                 double(i),
-                                 X[i][0],
-                                 X[i][1],
-                                 X[i][2],
-                                 U[i][0],
-                                 U[i][1],
-                                 U[i][2],
-                                 W[i][0],
-                                 W[i][1],
-                                 W[i][2],
-                                 prm.radii[i]});
-      const double gap = min_gap_of(X);
-      summary.min_gap  = std::min(summary.min_gap, gap);
-      if (n >= 2)
+      catch (const std::exception &e)
         {
-          double d2 = 0;
-          for (unsigned int d = 0; d < dim; ++d)
-            d2 += std::pow(Contact::PairSearch::minimum_image(X[1][d] - X[0][d],
-                                                              periods[d]),
-                           2);
-          summary.min_normalised_distance =
-            std::min(summary.min_normalised_distance,
-                     std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
+          error = e.what();
         }
-      const double cells =
-        fictitious ? double(tria->n_global_active_cells()) : 0.;
-      const double dofs = fictitious ? double(solver->n_dofs()) : 0.;
-      statistics_csv.write_row({double(step),
-                                t,
-                                dt,
-                                cells,
-                                dofs,
-                                double(fluid_stats.uzawa_iterations),
-                                double(fluid_stats.linear_iterations),
-                                fluid_stats.rigidity_residual,
-                                std::isfinite(gap) ? gap : 0.,
-                                double(n_active),
-                                double(n_glued),
-                                wall_clock.wall_time(),
-                                double(remeshed),
-                                double(contact_iterations)});
-      summary.max_uzawa_iterations =
-        std::max(summary.max_uzawa_iterations, fluid_stats.uzawa_iterations);
-      summary.max_linear_iterations =
-        std::max(summary.max_linear_iterations, fluid_stats.linear_iterations);
-      summary.max_rigidity_residual =
-        std::max(summary.max_rigidity_residual, fluid_stats.rigidity_residual);
-      summary.n_cells = cells;
-      summary.n_dofs  = dofs;
-      if (field_output && step % prm.field_output_interval == 0)
-        field_output->write(*solver, solid, step, t);
-      if (prm.particle_output_interval > 0 &&
-          step % prm.particle_output_interval == 0)
-        particle_output.write(step,
-                              t,
-                              X,
-                              prm.radii,
-                              U,
-                              W,
-                              projector.glued_count_per_particle(n));
-      if (step % prm.progress_interval == 0)
-        {
-          const double elapsed = wall_clock.wall_time();
-          const double eta = t > 0 ? elapsed / t * (prm.end_time - t) : 0.;
-          pcout << "step " << std::setw(6) << step << "  t = " << std::fixed
-                << std::setprecision(4) << t << "  dt = " << std::scientific
-                << std::setprecision(2) << dt
-                << "  gap = " << (std::isfinite(gap) ? gap : 0.)
-                << std::defaultfloat;
-          if (fictitious)
-            pcout << "  cells " << tria->n_global_active_cells() << "  Uzawa "
-                  << fluid_stats.uzawa_iterations << "  FGMRES "
-                  << fluid_stats.linear_iterations << "  rigidity "
-                  << std::scientific << std::setprecision(1)
-                  << fluid_stats.rigidity_residual << std::defaultfloat;
-          pcout << "  contacts " << n_active << "/" << n_glued << "  ETA "
-                << format_time(eta) << std::endl;
-        }
-    };
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    if (!error.empty())
+      throw RunError("writing the checkpoint of step " +
+                     std::to_string(state.step) + " failed: " + error);
+    bytes                = Utilities::MPI::broadcast(comm, bytes, 0);
+    last_checkpoint_wall = wall_clock.wall_time();
+    if (prm.verbosity == Verbosity::verbose ||
+        (prm.verbosity == Verbosity::normal && StopRequest::signal_received()))
+      pcout << "checkpoint " << final_folder << ": " << bytes << " bytes, "
+            << std::fixed << std::setprecision(3) << clock.wall_time() << " s"
+            << std::defaultfloat << std::endl;
+  }
 
-    // Step 0: the initial state.
-    double t = 0.;
-    compute_velocities(t);
-    write_step(step, t, 0.);
 
-    if (exact)
+
+  template <int dim>
+  void
+  Simulation<dim>::report_exact_solution_errors()
+  {
+    const auto   errors = solver->compute_errors(*exact, solid, true);
+    const double g      = shear(0.);
+    double       werr = 0, uerr = 0;
+    for (unsigned int d = 0; d < 3; ++d)
       {
-        const auto   errors = solver->compute_errors(*exact, solid, true);
-        const double g      = shear(0.);
-        double       werr = 0, uerr = 0;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const double w_exact = d == 2 ? -0.5 * g : 0.;
-            werr += std::pow(W[0][d] - w_exact, 2);
-            uerr += std::pow(U[0][d], 2);
-          }
-        summary.u_l2_error  = errors.u_l2;
-        summary.u_h1_error  = errors.u_h1;
-        summary.u_l2_norm   = errors.u_l2_norm;
-        summary.omega_error = std::sqrt(werr) / std::abs(0.5 * g);
-        summary.translation_error =
-          std::sqrt(uerr) / std::abs(g * prm.radii[0]);
-        pcout << std::scientific << std::setprecision(4)
-              << "exact rigid inclusion: cells " << summary.n_cells << ", dofs "
-              << summary.n_dofs << ", L2 error of u (fluid) " << errors.u_l2
-              << ", L2 norm of exact u (fluid) " << errors.u_l2_norm
-              << ", H1 error of u (fluid) " << errors.u_h1
-              << ", relative omega error " << summary.omega_error
-              << ", |U|/(g a) " << summary.translation_error
-              << std::defaultfloat << std::endl;
+        const double w_exact = d == 2 ? -0.5 * g : 0.;
+        werr += std::pow(state.W[0][d] - w_exact, 2);
+        uerr += std::pow(state.U[0][d], 2);
       }
+    RunSummary &e       = exact_errors;
+    e.u_l2_error        = errors.u_l2;
+    e.u_h1_error        = errors.u_h1;
+    e.u_l2_norm         = errors.u_l2_norm;
+    e.omega_error       = std::sqrt(werr) / std::abs(0.5 * g);
+    e.translation_error = std::sqrt(uerr) / std::abs(g * prm.radii[0]);
+    pcout << std::scientific << std::setprecision(4)
+          << "exact rigid inclusion: cells " << tria->n_global_active_cells()
+          << ", dofs " << solver->n_dofs() << ", L2 error of u (fluid) "
+          << errors.u_l2 << ", L2 norm of exact u (fluid) " << errors.u_l2_norm
+          << ", H1 error of u (fluid) " << errors.u_h1
+          << ", relative omega error " << e.omega_error << ", |U|/(g a) "
+          << e.translation_error << std::defaultfloat << std::endl;
+  }
 
-    double dt_old = 0., t_old = 0.;
-    bool   have_history = false;
-    while (t < prm.end_time * (1. - 1e-12))
-      {
-        // Time step (numerics section 5).
-        double dt = prm.time_step;
-        if (prm.adaptive_time_step)
-          {
-            double umax = 0;
-            for (const auto &v : U)
-              umax =
-                std::max(umax,
-                         std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
-            const double h = fictitious ? h_finest : a_min;
-            dt             = umax > 0 ?
-                               std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
-                               prm.maximum_time_step;
-          }
-        dt = std::min(dt, prm.end_time - t);
 
-        // AB2 extrapolation of the hydrodynamic velocities. The Stokes
-        // problem is quasi-static and linear in the boundary data, so U is
-        // the shear rate times a field that depends on the positions only.
-        // Extrapolating U / shear and multiplying by the shear rate at the
-        // middle of the step is the same formula for a constant shear rate,
-        // and stays exact when the shear rate jumps at a step boundary (a
-        // reversal 't < T ? 1 : -1'), where plain AB2 would make one step
-        // with -2U: an O(dt) error that breaks the reversibility of Stokes
-        // flow, which is what the contact models are meant to keep.
-        const double      beta   = have_history ? dt / (2. * dt_old) : 0.;
-        const double      g_now  = shear(t);
-        const double      g_old  = have_history ? shear(t_old) : g_now;
-        const double      g_mid  = shear(t + 0.5 * dt);
-        const bool        scaled = std::abs(g_now) > 0. && std::abs(g_old) > 0.;
-        const double      c_now  = scaled ? g_mid / g_now : 1.;
-        const double      c_old  = scaled ? g_mid / g_old : 1.;
-        std::vector<Vec3> w_star(n);
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              u_star[i][d] =
-                (1. + beta) * c_now * U[i][d] - beta * c_old * U_old[i][d];
-              w_star[i][d] =
-                (1. + beta) * c_now * W[i][d] - beta * c_old * W_old[i][d];
-            }
 
-        // Contact: projection onto K.
-        {
-          TimerOutput::Scope scope(timer, "contact");
-          try
-            {
-              const Contact::ProjectionStatistics cst =
-                projector.project(X, prm.radii, u_star, dt, u);
-              n_active           = cst.n_active;
-              n_glued            = cst.n_glued;
-              contact_iterations = cst.iterations;
-              summary.max_contact_iterations =
-                std::max(summary.max_contact_iterations, cst.iterations);
-              if (!cst.converged)
-                {
-                  ++summary.contact_failures;
-                  std::ostringstream m;
-                  m << "the contact projection at step " << step + 1
-                    << " did not converge: constraint violation "
-                    << cst.residual << " > " << cs.tolerance << " after "
-                    << cst.iterations << " iterations";
-                  warnings.warn("contact projection not converged",
-                                m.str(),
-                                step + 1,
-                                cst.residual);
-                }
-            }
-          catch (const Contact::ContactError &e)
-            {
-              throw RunError(std::string(e.what()) + " (at step " +
-                             std::to_string(step + 1) +
-                             ", t = " + std::to_string(t) + ")");
-            }
-        }
-
-        // Displacement and orientation.
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            for (unsigned int d = 0; d < dim; ++d)
-              X[i][d] += dt * u[i][d];
-            if (dim == 2)
-              angle[i] += dt * w_star[i][2];
-            else
-              {
-                // q <- q + dt/2 (0, w) q, renormalised.
-                auto        &q  = quaternion[i];
-                const double wx = w_star[i][0], wy = w_star[i][1],
-                             wz                = w_star[i][2];
-                const std::array<double, 4> dq = {
-                  {-wx * q[1] - wy * q[2] - wz * q[3],
-                   wx * q[0] + wy * q[3] - wz * q[2],
-                   -wx * q[3] + wy * q[0] + wz * q[1],
-                   wx * q[2] - wy * q[1] + wz * q[0]}};
-                double norm = 0;
-                for (unsigned int k = 0; k < 4; ++k)
-                  {
-                    q[k] += 0.5 * dt * dq[k];
-                    norm += q[k] * q[k];
-                  }
-                for (unsigned int k = 0; k < 4; ++k)
-                  q[k] /= std::sqrt(norm);
-              }
-          }
-        U_old        = U;
-        W_old        = W;
-        dt_old       = dt;
-        t_old        = t;
-        have_history = true;
-        t += dt;
-        ++step;
-
-        // A particle whose centre crossed a periodic face comes back
-        // through the opposite face; the solid indicator keeps images of
-        // particles that straddle it, the contact module works with the
-        // minimum image.
-        for (unsigned int i = 0; i < n; ++i)
-          for (const unsigned int d : periodic)
-            {
-              const double L = hi[d] - lo[d];
-              if (X[i][d] < lo[d])
-                X[i][d] += L;
-              else if (X[i][d] >= hi[d])
-                X[i][d] -= L;
-            }
-
-        // A particle that reaches a face where it cannot stay stops the run.
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int d = 0; d < dim; ++d)
-            if (is_periodic[d])
-              continue;
-            else if (X[i][d] - prm.radii[i] < lo[d] - cs.overlap_tolerance ||
-                     X[i][d] + prm.radii[i] > hi[d] + cs.overlap_tolerance)
-              {
-                const bool         low     = X[i][d] - prm.radii[i] < lo[d];
-                const char         axis[3] = {'x', 'y', 'z'};
-                std::ostringstream s;
-                s << "particle " << i << " reached the box face " << axis[d]
-                  << " = " << (low ? lo[d] : hi[d]) << " at step " << step
-                  << ", t = " << t << " (centre " << X[i][d] << ", radius "
-                  << prm.radii[i] << "): ";
-                if (is_wall_axis[d])
-                  s << "it crossed a wall (Contact/Walls = "
-                    << (prm.walls ? "true" : "false") << ", Contact/Model "
-                    << (prm.contact_model == ContactModel::none ? "none" : "")
-                    << ")";
-                else
-                  s << "it left through an in/outflow face";
-                s << "; output up to step " << step - 1 << " is written";
-                throw RunError(s.str());
-              }
-
-        compute_velocities(t);
-        write_step(step, t, dt);
-      }
-
-    warnings.summary();
-    summary.n_steps      = step;
-    summary.final_time   = t;
-    summary.positions    = X;
-    summary.velocities   = U;
-    summary.omegas       = W;
-    summary.wall_seconds = wall_clock.wall_time();
-    return summary;
+  template <int dim>
+  double
+  Simulation<dim>::elapsed_wall_seconds() const
+  {
+    return state.wall_seconds_before + wall_clock.wall_time();
   }
 
 
 
   RunSummary
-  run_simulation(const Parameters &parameters)
+  run_simulation(const Parameters              &parameters,
+                 const Checkpoint::ResumePoint *resume)
   {
     if (parameters.dimension == 2)
-      return Simulation<2>(parameters).run();
-    return Simulation<3>(parameters).run();
+      return Simulation<2>(parameters, resume).run();
+    return Simulation<3>(parameters, resume).run();
   }
 
   template class Simulation<2>;

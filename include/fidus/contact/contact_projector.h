@@ -8,6 +8,7 @@
 #include <fidus/contact/glue_state.h>
 #include <fidus/contact/pair_search.h>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace Fidus::Contact
@@ -136,6 +137,14 @@ namespace Fidus::Contact
     /// Forget the glue state and the warm start.
     void
     reset_glue();
+
+    /// Continue from saved glue entries (a resumed run): the next
+    /// projection sees exactly the state glue_state() had when saved.
+    void
+    restore_glue(std::vector<GlueState::Entry> entries)
+    {
+      glue.rebuild(std::move(entries));
+    }
 
     /// The glue state after the last projection (pair identity, gamma,
     /// last multiplier).

@@ -130,7 +130,10 @@ namespace Fidus
     // Output
     unsigned int field_output_interval    = 0;
     unsigned int particle_output_interval = 0;
-    unsigned int progress_interval        = 1;
+    unsigned int progress_interval        = 0;
+    double       progress_wall_interval   = 5.;
+    unsigned int checkpoint_interval      = 0;
+    double       checkpoint_wall_interval = 0.;
     Verbosity    verbosity                = Verbosity::normal;
   };
 

@@ -50,7 +50,6 @@ namespace Fidus
     void
     summary() const;
 
-  private:
     /// Per kind: how many, the largest value and the step it occurred at.
     struct Tally
     {
@@ -59,6 +58,21 @@ namespace Fidus
       unsigned int worst_step = 0;
     };
 
+    /// The counters by kind (a checkpoint saves them).
+    const std::map<std::string, Tally> &
+    get_tallies() const
+    {
+      return tallies;
+    }
+
+    /// Continue counting from @p saved (a resumed run).
+    void
+    restore(const std::map<std::string, Tally> &saved)
+    {
+      tallies = saved;
+    }
+
+  private:
     std::ostream                &out;
     const bool                   writer;
     const unsigned int           max_repeats;

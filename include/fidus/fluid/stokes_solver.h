@@ -4,6 +4,7 @@
 #include <deal.II/base/function.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -170,6 +171,37 @@ namespace Fidus
     void
     reset_multiplier();
 
+    /// Whether the multiplier is the warm start of the next solve.
+    bool
+    multiplier_is_valid() const
+    {
+      return multiplier_valid;
+    }
+
+    /**
+     * Attach the multiplier to the triangulation, so that the next
+     * triangulation.save() stores it with the mesh (a checkpoint). Call
+     * finish_checkpoint() after the save.
+     */
+    void
+    prepare_for_checkpoint();
+
+    /// Release what prepare_for_checkpoint() attached.
+    void
+    finish_checkpoint();
+
+    /**
+     * After triangulation.load() of a checkpoint: distribute DoFs as
+     * setup_dofs() does and read the multiplier back. It is the next
+     * solve's warm start if @p multiplier_is_warm_start (as it was when
+     * saved). On the same number of ranks the DoF numbering, and therefore
+     * every later number, is the same as in the run that wrote it.
+     */
+    void
+    load_from_checkpoint(const std::vector<unsigned int> &periodic_directions,
+                         const std::set<types::boundary_id> &dirichlet_ids,
+                         bool multiplier_is_warm_start);
+
   private:
     /// Hanging nodes, periodicity and the boundary velocity.
     void
@@ -194,6 +226,10 @@ namespace Fidus
     DoFHandler<dim>                            dof_handler;
     QGauss<dim>                                quadrature;
 
+    /// Locally owned and ghost cells in mesh order (canonical_cell_order):
+    /// every loop that adds up over cells runs in this order.
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+
     std::vector<unsigned int>    periodic_directions;
     std::set<types::boundary_id> dirichlet_ids;
     std::vector<IndexSet>        owned_partitioning, relevant_partitioning;
@@ -211,6 +247,11 @@ namespace Fidus
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
+
+    /// Holds the multiplier between prepare_for_checkpoint() and the save.
+    std::unique_ptr<parallel::distributed::
+                      SolutionTransfer<dim, TrilinosWrappers::MPI::BlockVector>>
+      checkpoint_transfer;
   };
 } // namespace Fidus
 

@@ -32,6 +32,12 @@ namespace Fidus
           const unsigned int         step,
           const double               time);
 
+    /// A resumed run: keep the collection entries of steps up to
+    /// @p last_step (the checkpoint's) and rewrite solution.pvd with them
+    /// (rank 0 writes, every rank keeps the records).
+    void
+    resume(unsigned int last_step, bool writer);
+
   private:
     std::string                                 directory;
     std::vector<std::pair<double, std::string>> records;

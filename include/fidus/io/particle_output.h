@@ -34,7 +34,16 @@ namespace Fidus
           const std::vector<std::array<double, 3>> &omegas,
           const std::vector<unsigned int>          &glued);
 
+    /// A resumed run: keep the collection entries of steps up to
+    /// @p last_step (the checkpoint's) and rewrite particles.pvd with them.
+    void
+    resume(unsigned int last_step);
+
   private:
+    /// Write particles.pvd from the records.
+    void
+    write_collection() const;
+
     std::string                                 directory;
     bool                                        active;
     std::vector<std::pair<double, std::string>> records;

@@ -2,12 +2,25 @@
 #define fidus_simulation_simulation_h
 
 #include <array>
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <fidus/contact/contact_projector.h>
 #include <fidus/core/parameters.h>
-
-namespace dealii
-{
-  class TimerOutput;
-}
+#include <fidus/core/shear_rate.h>
+#include <fidus/core/warning_log.h>
+#include <fidus/fluid/boundary_velocity.h>
+#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <fidus/fluid/stokes_solver.h>
+#include <fidus/io/csv_writer.h>
+#include <fidus/io/field_output.h>
+#include <fidus/io/particle_output.h>
+#include <fidus/mesh/mesh_refiner.h>
+#include <fidus/particles/solid_indicator.h>
+#include <fidus/simulation/box_geometry.h>
+#include <fidus/simulation/checkpoint.h>
+#include <fidus/simulation/run_state.h>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,43 +52,156 @@ namespace Fidus
     /// on the fluid part, |omega + g/2| / (g/2) and |U| / (g a).
     double u_l2_error = 0., u_h1_error = 0., omega_error = 0.,
            translation_error = 0.;
-    /// L2 norm of the exact velocity on the fluid part (same scene).
+    /// L2 norm of the exact velocity on the same region (same scene).
     double u_l2_norm = 0.;
-    /// Wall seconds of the whole run.
+    /// Wall seconds of the whole run (earlier parts of a resumed run
+    /// included).
     double wall_seconds = 0.;
+    /// The signal that stopped the run before its End time (0: none).
+    int stop_signal = 0;
   };
 
   /**
-   * The time loop of fidus (numerics sections 5 and 6) for one scene. The
-   * only place that knows the order of the stages:
-   *   mesh (refine around particles, skipped while they moved little)
-   *   -> fluid (penalised Stokes, Uzawa) -> particles (rigid velocities)
-   *   -> AB2 extrapolation -> contact (projection onto K, glue)
-   *   -> displacement -> output.
+   * The time loop of fidus (numerics sections 5 and 6) for one scene: the
+   * only place that knows the order of the stages. Each stage is a member
+   * function; what passes from one step to the next is the RunState, which
+   * a checkpoint saves with the mesh. run() reads as the algorithm:
+   *
+   *   predict the velocities at the initial positions, write step 0
+   *   (or resume from a checkpoint);
+   *   while the End time is not reached:
+   *     choose the time step;
+   *     extrapolate the rigid velocities (AB2);
+   *     project them onto the admissible set K (contact, glue);
+   *     advance the particles;
+   *     refine the mesh if the particles moved (fictitious domain);
+   *     solve the fluid (penalised Stokes, Uzawa);
+   *     extract each particle's rigid velocity;
+   *     write the output;
+   *     checkpoint when due, stop when a signal asked for it.
+   *
    * The fluid and contact modules never see each other.
    */
   template <int dim>
   class Simulation
   {
   public:
-    /// @p parameters must have passed Parameters::parse().
-    explicit Simulation(const Parameters &parameters);
+    /// @p parameters must have passed Parameters::parse(). With @p resume
+    /// (checked by Checkpoint::find_and_check) the run continues from that
+    /// checkpoint; both must outlive the object.
+    explicit Simulation(const Parameters              &parameters,
+                        const Checkpoint::ResumePoint *resume = nullptr);
+    ~Simulation();
 
     /// Run the scene; output goes to the output directory.
     RunSummary
     run();
 
   private:
-    /// The time loop proper; @p timer collects the stage timings.
-    RunSummary
-    run_steps(dealii::TimerOutput &timer);
+    /// Step 0: the initial state, its velocities and output.
+    void
+    start();
+    /// Load the checkpoint's mesh, multiplier and state; continue the
+    /// output files from its step.
+    void
+    resume_from_checkpoint();
+    /// Whether the End time is reached.
+    bool
+    finished() const;
+    /// Fixed, or CFL-limited by the fastest particle (numerics section 5).
+    double
+    choose_time_step() const;
+    /// AB2 extrapolation of U / shear rate to the middle of the step.
+    void
+    extrapolate_velocities(double dt);
+    /// Contact: projection of the extrapolated velocities onto K.
+    void
+    project_onto_admissible_set(double dt);
+    /// Move and turn the particles; wrap periodic faces; stop the run if
+    /// a particle crossed a face where it cannot stay.
+    void
+    advance_particles(double dt);
+    /// Adapt the mesh to the particles, unless they moved little since the
+    /// last remesh.
+    void
+    refine_mesh_if_particles_moved();
+    /// Penalised Stokes with the rigidity multiplier (Uzawa).
+    void
+    solve_fluid();
+    /// The rigid velocity (U, omega) of each particle from the fluid.
+    void
+    extract_rigid_motion();
+    /// Velocities at the current positions: the three stages above, or the
+    /// undisturbed shear flow at the centres.
+    void
+    predict_velocities();
+    /// CSV rows, VTU/VTP output and the progress line of this step.
+    void
+    write_output(double dt);
+    /// Write a checkpoint when one is due; true when a signal asked the run
+    /// to stop (a checkpoint is then written first).
+    bool
+    checkpoint_or_stop();
+    /// Write a checkpoint of the current step (collective).
+    void
+    write_checkpoint();
+    /// The 'exact rigid inclusion' scene: error norms of step 0.
+    void
+    report_exact_solution_errors();
+    /// Wall seconds of the run so far, earlier parts included.
+    double
+    elapsed_wall_seconds() const;
 
-    const Parameters &prm;
+    const Parameters                    &prm;
+    const Checkpoint::ResumePoint       *resume;
+    const MPI_Comm                       comm;
+    const bool                           root;
+    dealii::ConditionalOStream           pcout;
+    std::unique_ptr<dealii::TimerOutput> timer;
+    dealii::Timer                        wall_clock;
+
+    const BoxGeometry<dim> box;
+    const ShearRate        shear;
+    const bool             fictitious;
+    const unsigned int     n;
+
+    Contact::Settings         contact_settings;
+    Contact::ContactProjector projector;
+
+    std::unique_ptr<dealii::parallel::distributed::Triangulation<dim>> tria;
+    std::unique_ptr<StokesSolver<dim>>                                 solver;
+    std::unique_ptr<MeshRefiner<dim>>                                  refiner;
+    std::unique_ptr<ExactRigidInclusion<dim>>                          exact;
+    BoundaryVelocity<dim>                                              boundary;
+    SolidIndicator<dim>                                                solid;
+
+    std::unique_ptr<CsvWriter>        particles_csv, statistics_csv;
+    std::unique_ptr<ParticleOutput>   particle_output;
+    std::unique_ptr<FieldOutput<dim>> field_output;
+    WarningLog                        warnings;
+
+    /// What passes from step to step (saved by checkpoints).
+    RunState state;
+
+    /// This step's work, for its output row.
+    typename StokesSolver<dim>::Statistics fluid_stats;
+    bool                                   remeshed = false;
+    unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
+    std::vector<RunState::Vec3> u_star, w_star, u_corrected;
+
+    /// Wall clock of the last progress line and checkpoint.
+    double last_progress_wall = -1., last_checkpoint_wall = 0.;
+    /// Errors of the exact-solution scene (step 0).
+    RunSummary exact_errors;
+    /// Signal that stopped the run (0: none).
+    int stop_signal = 0;
   };
 
-  /// Run a scene in its dimension (picks Simulation<2> or <3>).
+  /// Run a scene in its dimension (picks Simulation<2> or <3>), from the
+  /// start or from @p resume.
   RunSummary
-  run_simulation(const Parameters &parameters);
+  run_simulation(const Parameters              &parameters,
+                 const Checkpoint::ResumePoint *resume = nullptr);
 } // namespace Fidus
 
 #endif

@@ -1,0 +1,36 @@
+#ifndef fidus_simulation_progress_line_h
+#define fidus_simulation_progress_line_h
+
+#include <string>
+
+namespace Fidus
+{
+  /**
+   * One progress line on screen: step, time, Δt, smallest gap, and for the
+   * fictitious-domain fluid the cells, Uzawa and FGMRES iterations and the
+   * rigidity residual, then the active/glued contacts and the estimated
+   * time to finish.
+   */
+  struct ProgressLine
+  {
+    unsigned int       step = 0;
+    double             time = 0., dt = 0., gap = 0.;
+    bool               fluid = false;
+    unsigned long long cells = 0;
+    unsigned int       uzawa = 0, fgmres = 0;
+    double             rigidity_residual = 0.;
+    unsigned int       active = 0, glued = 0;
+    /// Estimated wall seconds to the End time.
+    double eta = 0.;
+
+    /// The formatted line (no newline).
+    std::string
+    text() const;
+
+    /// Seconds as "12.3s", "4m05s" or "2h07m".
+    static std::string
+    format_duration(double seconds);
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,82 @@
+#include <algorithm>
+#include <cmath>
+#include <fidus/simulation/box_geometry.h>
+
+namespace Fidus
+{
+  template <int dim>
+  BoxGeometry<dim>::BoxGeometry(const Parameters &prm)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lo[d] = prm.lower_left[d];
+        hi[d] = prm.upper_right[d];
+      }
+    y_mid = 0.5 * (lo[1] + hi[1]);
+    if (!prm.radii.empty())
+      {
+        a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
+        a_max = *std::max_element(prm.radii.begin(), prm.radii.end());
+      }
+    smallest_side = hi[0] - lo[0];
+    for (unsigned int d = 1; d < dim; ++d)
+      smallest_side = std::min(smallest_side, hi[d] - lo[d]);
+    h_finest = smallest_side / std::pow(2., prm.maximum_level);
+
+    if (prm.boundary_condition == BoundaryCondition::sliding_walls)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (d != 1)
+          {
+            periodic.push_back(d);
+            is_periodic[d] = true;
+            periods[d]     = hi[d] - lo[d];
+          }
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!is_periodic[d])
+        {
+          dirichlet_ids.insert(2 * d);
+          dirichlet_ids.insert(2 * d + 1);
+        }
+
+    // A face is a wall if the imposed velocity has no normal component:
+    // the y faces always; x and z faces for the cavity; z faces in linear
+    // shear (u = g (y - y_mid) e_x is tangential there).
+    is_wall_axis.assign(dim, false);
+    if (prm.boundary_condition != BoundaryCondition::exact_rigid_inclusion)
+      for (unsigned int d = 0; d < dim; ++d)
+        is_wall_axis[d] =
+          d == 1 || prm.boundary_condition == BoundaryCondition::cavity ||
+          (prm.boundary_condition == BoundaryCondition::linear_shear && d == 2);
+    if (prm.walls)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (is_wall_axis[d])
+          for (const int side : {1, -1})
+            {
+              Contact::Wall w;
+              w.axis     = d;
+              w.side     = side;
+              w.position = side > 0 ? lo[d] : hi[d];
+              walls.push_back(w);
+            }
+  }
+
+
+
+  template <int dim>
+  void
+  BoxGeometry<dim>::wrap(std::vector<std::array<double, 3>> &X) const
+  {
+    for (auto &x : X)
+      for (const unsigned int d : periodic)
+        {
+          const double L = hi[d] - lo[d];
+          if (x[d] < lo[d])
+            x[d] += L;
+          else if (x[d] >= hi[d])
+            x[d] -= L;
+        }
+  }
+
+  template struct BoxGeometry<2>;
+  template struct BoxGeometry<3>;
+} // namespace Fidus

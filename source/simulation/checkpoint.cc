@@ -1,0 +1,299 @@
+#include <algorithm>
+#include <fidus/core/input_error.h>
+#include <fidus/simulation/archive_reader.h>
+#include <fidus/simulation/archive_writer.h>
+#include <fidus/simulation/checkpoint.h>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace Fidus
+{
+  namespace
+  {
+    namespace fs = std::filesystem;
+
+    const std::string magic = "fidus checkpoint";
+    // Raised whenever the layout of state.bin changes.
+    constexpr std::uint32_t format_version = 1;
+
+    const char *const boundary_names[] = {"linear shear",
+                                          "sliding walls",
+                                          "cavity",
+                                          "exact rigid inclusion"};
+    const char *const fluid_names[]    = {"fictitious domain",
+                                          "undisturbed shear"};
+
+    std::string
+    read_file(const std::string &name)
+    {
+      std::ifstream in(name, std::ios::binary);
+      if (!in)
+        throw InputError("--resume: the checkpoint file '" + name +
+                         "' is missing; allowed: a checkpoint folder "
+                         "written completely by fidus");
+      std::ostringstream s;
+      s << in.rdbuf();
+      return s.str();
+    }
+
+    /// Step of a complete checkpoint folder name, or -1.
+    long
+    step_of_folder(const std::string &name)
+    {
+      const std::string prefix = "checkpoint-";
+      if (name.size() != prefix.size() + 6 || name.rfind(prefix, 0) != 0)
+        return -1;
+      const std::string digits = name.substr(prefix.size());
+      if (!std::all_of(digits.begin(), digits.end(), [](char c) {
+            return c >= '0' && c <= '9';
+          }))
+        return -1;
+      return std::stol(digits);
+    }
+
+    std::string
+    point_text(const std::array<double, 3> &p, const unsigned int dim)
+    {
+      std::ostringstream s;
+      s << std::setprecision(15);
+      for (unsigned int d = 0; d < dim; ++d)
+        s << (d ? "," : "") << p[d];
+      return s.str();
+    }
+
+    [[noreturn]] void
+    mismatch(const std::string &entry,
+             const std::string &value,
+             const std::string &folder,
+             const std::string &saved)
+    {
+      throw InputError("--resume: entry '" + entry + "' is " + value +
+                       ", but the checkpoint '" + folder + "' was written " +
+                       "with " + saved + "; allowed: " + saved +
+                       " (a resumed run must be the same scene; start a new "
+                       "run in another Output directory to change it)");
+    }
+  } // namespace
+
+
+
+  std::string
+  Checkpoint::folder(const std::string &output_directory,
+                     const unsigned int step)
+  {
+    std::ostringstream s;
+    s << output_directory << "/checkpoint-" << std::setw(6) << std::setfill('0')
+      << step;
+    return s.str();
+  }
+
+
+
+  std::string
+  Checkpoint::temporary_folder(const std::string &output_directory,
+                               const unsigned int step)
+  {
+    return folder(output_directory, step) + ".tmp";
+  }
+
+
+
+  unsigned long long
+  Checkpoint::commit(const std::string &temporary,
+                     const std::string &final_folder,
+                     const Parameters  &prm,
+                     const RunState    &state,
+                     const unsigned int n_ranks)
+  {
+    ArchiveWriter a;
+    a.put(magic);
+    a.put(format_version);
+    a.put<std::uint32_t>(prm.dimension);
+    a.put<std::uint32_t>(n_ranks);
+    a.put(prm.radii);
+    a.put(prm.lower_left);
+    a.put(prm.upper_right);
+    a.put<std::int32_t>(static_cast<std::int32_t>(prm.boundary_condition));
+    a.put<std::int32_t>(static_cast<std::int32_t>(prm.fluid_model));
+    a.put<std::uint32_t>(prm.velocity_degree);
+
+    // The mesh files written by Triangulation::save, with their sizes and
+    // checksums, so that resume can tell a truncated one before p4est reads
+    // it (p4est aborts without a message on a bad file).
+    std::vector<std::string> mesh_files;
+    for (const auto &entry : fs::directory_iterator(temporary))
+      if (entry.path().filename().string().rfind("mesh", 0) == 0)
+        mesh_files.push_back(entry.path().filename().string());
+    std::sort(mesh_files.begin(), mesh_files.end());
+    unsigned long long bytes = 0;
+    a.put<std::uint64_t>(mesh_files.size());
+    for (const std::string &name : mesh_files)
+      {
+        const std::string content = read_file(temporary + "/" + name);
+        a.put(name);
+        a.put<std::uint64_t>(content.size());
+        a.put<std::uint64_t>(
+          ArchiveWriter::checksum(content.data(), content.size()));
+        bytes += content.size();
+      }
+    state.save(a);
+
+    const std::string image = a.finish();
+    {
+      std::ofstream out(temporary + "/state.bin", std::ios::binary);
+      out.write(image.data(), image.size());
+      out.close();
+      if (!out)
+        throw RunError("cannot write the checkpoint file '" + temporary +
+                       "/state.bin'");
+    }
+    bytes += image.size();
+
+    // The new checkpoint is complete: give it its name, then remove the
+    // older ones (and temporary folders of writes that were cut off).
+    fs::remove_all(final_folder);
+    fs::rename(temporary, final_folder);
+    const fs::path    parent = fs::path(final_folder).parent_path();
+    const std::string keep   = fs::path(final_folder).filename().string();
+    for (const auto &entry : fs::directory_iterator(parent))
+      {
+        const std::string name = entry.path().filename().string();
+        if (name == keep || name.rfind("checkpoint-", 0) != 0)
+          continue;
+        const bool stale_temporary = name.size() > 4 &&
+                                     name.substr(name.size() - 4) == ".tmp" &&
+                                     entry.path() != fs::path(temporary);
+        if (step_of_folder(name) >= 0 || stale_temporary)
+          fs::remove_all(entry.path());
+      }
+    return bytes;
+  }
+
+
+
+  Checkpoint::ResumePoint
+  Checkpoint::find_and_check(const Parameters &prm)
+  {
+    const std::string dir    = prm.output_directory;
+    long              newest = -1;
+    if (fs::is_directory(dir))
+      for (const auto &entry : fs::directory_iterator(dir))
+        if (entry.is_directory())
+          newest =
+            std::max(newest, step_of_folder(entry.path().filename().string()));
+    if (newest < 0)
+      throw InputError(
+        "--resume: the Output directory '" + dir +
+        "' holds no checkpoint (no folder checkpoint-NNNNNN); allowed: the "
+        "Output directory of a run that wrote one (Output/Checkpoint "
+        "interval or Checkpoint wall interval above 0, or a run stopped by "
+        "SIGTERM or SIGINT)");
+
+    ResumePoint r;
+    r.folder = folder(dir, newest);
+    ArchiveReader a(read_file(r.folder + "/state.bin"),
+                    r.folder + "/state.bin");
+    if (a.get_string() != magic)
+      throw InputError("--resume: '" + r.folder +
+                       "/state.bin' is not a fidus checkpoint");
+    const auto version = a.get<std::uint32_t>();
+    if (version != format_version)
+      throw InputError("--resume: '" + r.folder + "/state.bin' has format " +
+                       std::to_string(version) + "; allowed: format " +
+                       std::to_string(format_version) +
+                       " (written by another version of fidus)");
+    const auto dimension = a.get<std::uint32_t>();
+    if (dimension != prm.dimension)
+      mismatch("Dimension",
+               std::to_string(prm.dimension),
+               r.folder,
+               "Dimension = " + std::to_string(dimension));
+    a.get<std::uint32_t>(); // ranks that wrote it: any number may resume
+    const std::vector<double> radii = a.get_vector<double>();
+    if (radii.size() != prm.radii.size())
+      mismatch("Particles/Positions",
+               std::to_string(prm.radii.size()) + " particles",
+               r.folder,
+               std::to_string(radii.size()) + " particles");
+    for (std::size_t i = 0; i < radii.size(); ++i)
+      if (radii[i] != prm.radii[i])
+        {
+          std::ostringstream v, s;
+          v << std::setprecision(15) << "radius " << prm.radii[i]
+            << " for particle " << i;
+          s << std::setprecision(15) << "radius " << radii[i]
+            << " for particle " << i;
+          mismatch("Particles/Radius", v.str(), r.folder, s.str());
+        }
+    const auto lower = a.get<std::array<double, 3>>();
+    const auto upper = a.get<std::array<double, 3>>();
+    if (lower != prm.lower_left)
+      mismatch("Domain/Lower left",
+               point_text(prm.lower_left, prm.dimension),
+               r.folder,
+               point_text(lower, prm.dimension));
+    if (upper != prm.upper_right)
+      mismatch("Domain/Upper right",
+               point_text(prm.upper_right, prm.dimension),
+               r.folder,
+               point_text(upper, prm.dimension));
+    const auto boundary = a.get<std::int32_t>();
+    if (boundary != static_cast<std::int32_t>(prm.boundary_condition))
+      mismatch("Domain/Boundary condition",
+               std::string("'") +
+                 boundary_names[static_cast<int>(prm.boundary_condition)] + "'",
+               r.folder,
+               std::string("'") + boundary_names[boundary] + "'");
+    const auto fluid = a.get<std::int32_t>();
+    if (fluid != static_cast<std::int32_t>(prm.fluid_model))
+      mismatch("Fluid/Model",
+               std::string("'") +
+                 fluid_names[static_cast<int>(prm.fluid_model)] + "'",
+               r.folder,
+               std::string("'") + fluid_names[fluid] + "'");
+    const auto degree = a.get<std::uint32_t>();
+    if (degree != prm.velocity_degree)
+      mismatch("Fluid/Velocity degree",
+               std::to_string(prm.velocity_degree),
+               r.folder,
+               "Velocity degree = " + std::to_string(degree));
+
+    const auto n_mesh_files = a.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < n_mesh_files; ++k)
+      {
+        const std::string name     = a.get_string();
+        const auto        size     = a.get<std::uint64_t>();
+        const auto        checksum = a.get<std::uint64_t>();
+        const std::string path     = r.folder + "/" + name;
+        const std::string content  = read_file(path);
+        if (content.size() != size ||
+            ArchiveWriter::checksum(content.data(), content.size()) != checksum)
+          throw InputError(
+            "--resume: the checkpoint file '" + path + "' has " +
+            std::to_string(content.size()) + " bytes" +
+            (content.size() == size ? " and a different checksum" : "") +
+            ", but was written with " + std::to_string(size) +
+            " bytes (truncated or damaged); allowed: a checkpoint written "
+            "completely by fidus (remove this checkpoint folder to start "
+            "the run anew)");
+      }
+    r.state.load(a);
+    if (!a.at_end())
+      throw InputError("--resume: '" + r.folder +
+                       "/state.bin' holds more than a checkpoint (damaged)");
+    if (r.state.X.size() != prm.radii.size())
+      throw InputError("--resume: '" + r.folder +
+                       "/state.bin' is inconsistent (damaged)");
+
+    // The run's CSV files are continued, so they must be there.
+    for (const char *csv : {"particles.csv", "statistics.csv"})
+      if (!fs::exists(dir + "/" + csv))
+        throw InputError("--resume: the file '" + dir + "/" + csv +
+                         "' of the run that wrote '" + r.folder +
+                         "' is missing; allowed: the Output directory as "
+                         "that run left it");
+    return r;
+  }
+} // namespace Fidus

@@ -1,0 +1,200 @@
+#!/usr/bin/env bash
+# Checkpoint and restart: a run stopped by a signal and resumed gives the
+# same rows and values as an uninterrupted run (bit-identical on the same
+# number of ranks, to solver tolerance on another), a resumed run may go to
+# a later End time, the CSV files have every step once, and a bad checkpoint
+# gets one clear message, exit status 1 and changes no file.
+# Usage: run_restart_tests.sh path/to/fidus
+set -u
+fidus="$1"
+work="$(mktemp -d)"
+# FIDUS_KEEP=1 keeps the work folder for inspection.
+[ -z "${FIDUS_KEEP:-}" ] && trap 'rm -rf "$work"' EXIT
+cd "$work"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpirun_cmd=(mpirun -np 2 --oversubscribe)
+failures=0
+passes=0
+
+pass() { passes=$((passes + 1)); echo "ok: $1"; }
+fail() { failures=$((failures + 1)); echo "FAILED: $1"; }
+
+# scene OUT END [Output lines] [further sections]: the paper's 2D pair
+# (gluey) at level 5, 0.1 per step; the multiplier warm start and skipped
+# remeshes are in play.
+scene() {
+  cat <<EOF2
+${4:-}
+set Dimension = 2
+set Output directory = $work/$1
+subsection Fluid
+  set Rigidity tolerance = 1e-3
+  set Maximum Uzawa iterations = 4
+end
+subsection Particles
+  set Radius = 0.05
+  set Positions = 0.451, 0.51; 0.549, 0.49
+end
+subsection Contact
+  set Model = gluey
+end
+subsection Time stepping
+  set End time = $2
+  set Time step = 0.1
+end
+subsection Mesh refinement
+  set Maximum level = 5
+end
+subsection Output
+  set Particle output interval = 5
+  set Verbosity = quiet
+$3
+end
+EOF2
+}
+
+rows() { echo $(($(wc -l < "$1") - 1)); }
+
+# Same rows and values, wall clock (column 12 of statistics.csv) excepted.
+same_output() {
+  cmp -s "$1/particles.csv" "$2/particles.csv" &&
+    cmp -s <(cut -d, -f1-11,13- "$1/statistics.csv") \
+           <(cut -d, -f1-11,13- "$2/statistics.csv")
+}
+
+# Every step once, in order.
+no_duplicate_steps() {
+  tail -n +2 "$1/statistics.csv" | cut -d, -f1 |
+    awk 'NR > 1 && $1 != prev + 1 { bad = 1 } { prev = $1 } END { exit bad }'
+}
+
+# run_and_signal OUT PRM SIGNAL LAUNCHER...: start the run, send SIGNAL once
+# 8 steps are written, wait; prints the exit status.
+run_and_signal() {
+  local out="$1" prm="$2" sig="$3"
+  shift 3
+  "$@" "$fidus" "$prm" > "$out.stdout" 2> "$out.stderr" &
+  local pid=$!
+  for _ in $(seq 1 600); do
+    [ -f "$work/$out/statistics.csv" ] && [ "$(rows "$work/$out/statistics.csv")" -ge 9 ] && break
+    sleep 0.05
+  done
+  if [ "$#" -gt 0 ]; then
+    # mpirun answers SIGTERM by killing the ranks: signal the ranks
+    # themselves, as a batch system does.
+    pkill "-$sig" -P "$pid"
+  else
+    kill "-$sig" "$pid"
+  fi
+  wait "$pid"
+  echo $?
+}
+
+# --- 1. stopped by SIGTERM, resumed: same numbers, 1 and 2 ranks ---------
+scene ref1 3 "" > ref1.prm
+"$fidus" ref1.prm > /dev/null 2>&1 || fail "reference run (1 rank)"
+scene stop1 3 "  set Checkpoint interval = 4" > stop1.prm
+status=$(run_and_signal stop1 stop1.prm TERM)
+if [ "$status" = 143 ] && grep -q "SIGTERM received: stopped after step" stop1.stderr \
+   && [ "$(ls -d stop1/checkpoint-* | wc -l)" = 1 ] \
+   && [ "$(rows stop1/statistics.csv)" -lt 31 ]; then
+  pass "SIGTERM: exit 143, message, one checkpoint ($(ls -d stop1/checkpoint-*)) before the end"
+else
+  fail "SIGTERM on 1 rank: status $status, $(cat stop1.stderr)"
+fi
+"$fidus" --resume stop1.prm > stop1.resume.stdout 2>&1 || fail "resume on 1 rank"
+if same_output ref1 stop1 && no_duplicate_steps stop1 && [ "$(rows stop1/statistics.csv)" = 31 ]; then
+  pass "1 rank: stopped and resumed run bit-identical to the uninterrupted one, every step once"
+else
+  fail "1 rank: resumed output differs from the uninterrupted run"
+fi
+if [ "$(grep -c DataSet stop1/particles.pvd)" = 7 ]; then
+  pass "particles.pvd lists each of the 7 outputs once"
+else
+  fail "particles.pvd: $(grep -c DataSet stop1/particles.pvd) entries, expected 7"
+fi
+
+scene ref2 3 "" > ref2.prm
+"${mpirun_cmd[@]}" "$fidus" ref2.prm > /dev/null 2>&1 || fail "reference run (2 ranks)"
+scene stop2 3 "  set Checkpoint interval = 4" > stop2.prm
+status=$(run_and_signal stop2 stop2.prm TERM "${mpirun_cmd[@]}")
+if grep -q "SIGTERM received: stopped after step" stop2.stderr && [ "$(rows stop2/statistics.csv)" -lt 31 ]; then
+  pass "SIGTERM to both ranks: stopped before the end with a checkpoint"
+else
+  fail "SIGTERM on 2 ranks: status $status, $(cat stop2.stderr)"
+fi
+"${mpirun_cmd[@]}" "$fidus" --resume stop2.prm > stop2.resume.stdout 2>&1 || fail "resume on 2 ranks"
+if same_output ref2 stop2 && no_duplicate_steps stop2; then
+  pass "2 ranks: stopped and resumed run bit-identical to the uninterrupted one"
+else
+  fail "2 ranks: resumed output differs from the uninterrupted run"
+fi
+
+# --- 2. resumed on another number of ranks: same to solver tolerance -----
+scene other 3 "  set Checkpoint interval = 4" > other.prm
+status=$(run_and_signal other other.prm INT)
+"${mpirun_cmd[@]}" "$fidus" --resume other.prm > other.resume.stdout 2>&1 || fail "resume 1 -> 2 ranks"
+largest=$(paste -d, ref1/particles.csv other/particles.csv | awk -F, '
+  NR > 1 { for (c = 4; c <= 5; ++c) { d = $c - $(c + 13); if (d < 0) d = -d; if (d > m) m = d } }
+  END { printf "%.3e", m / 0.05 }')
+if [ "$status" = 130 ] && no_duplicate_steps other && [ "$(rows other/statistics.csv)" = 31 ] \
+   && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-4) }'; then
+  pass "SIGINT on 1 rank, resumed on 2: largest |dX|/a = $largest <= 1e-4 against the 1-rank run"
+else
+  fail "1 -> 2 ranks: status $status, largest |dX|/a = $largest"
+fi
+
+# --- 3. a later End time on resume ----------------------------------------
+# Step 11 remeshes: the loaded mesh must give the numbering of the original.
+scene later 1.1 "  set Checkpoint interval = 5" > later.prm
+"$fidus" later.prm > /dev/null 2>&1 || fail "run to t = 1.1"
+scene later 3 "  set Checkpoint interval = 5" > later3.prm
+"$fidus" --resume later3.prm > /dev/null 2>&1 || fail "resume to t = 3"
+if same_output ref1 later && no_duplicate_steps later; then
+  pass "run to t = 1.1, resumed to t = 3: bit-identical to one run to t = 3"
+else
+  fail "later End time: output differs from one run to t = 3"
+fi
+
+# --- 4. bad restart input: one message, exit 1, nothing changed -----------
+fingerprint() { find "$1" -type f | sort | xargs md5sum | md5sum; }
+expect_refusal() {
+  local name="$1" dir="$2" pattern="$3" prm="$4"
+  local before
+  before=$(fingerprint "$dir")
+  "$fidus" --resume "$prm" > bad.stdout 2> bad.stderr
+  local status=$?
+  if [ $status = 1 ] && grep -q -- "$pattern" bad.stderr && [ "$(grep -c . bad.stderr)" = 1 ] \
+     && [ "$before" = "$(fingerprint "$dir")" ]; then
+    pass "refused: $name"
+  else
+    fail "$name: status $status, stderr: $(cat bad.stderr)"
+  fi
+}
+expect_refusal "no checkpoint" ref1 "holds no checkpoint" ref1.prm
+scene stop1 3 "" "subsection Domain
+  set Lower left = 0, 0, 0
+  set Upper right = 1, 1, 1
+end" | sed 's/set Dimension = 2/set Dimension = 3/; s/0.451, 0.51;/0.451, 0.51, 0.5;/; s/0.549, 0.49$/0.549, 0.49, 0.5/' > dim3.prm
+expect_refusal "another dimension" stop1 "entry 'Dimension' is 3, but the checkpoint" dim3.prm
+scene stop1 3 "" | sed 's/0.549, 0.49$/0.549, 0.49; 0.2, 0.2/' > three.prm
+expect_refusal "another particle count" stop1 "entry 'Particles/Positions' is 3 particles" three.prm
+scene stop1 3 "" "subsection Domain
+  set Upper right = 2, 1
+end" > box.prm
+expect_refusal "another box" stop1 "entry 'Domain/Upper right' is 2,1" box.prm
+scene stop1 3 "" "subsection Fluid
+  set Model = undisturbed shear
+end" > fluid.prm
+expect_refusal "another fluid model" stop1 "entry 'Fluid/Model' is 'undisturbed shear'" fluid.prm
+cp -r stop1 cut_state && scene cut_state 3 "" > cut_state.prm
+state_file=$(ls -d cut_state/checkpoint-*)/state.bin
+truncate -s -10 "$state_file"
+expect_refusal "truncated state file" cut_state "state.bin' cannot be used: .*truncated" cut_state.prm
+cp -r stop1 cut_mesh && scene cut_mesh 3 "" > cut_mesh.prm
+mesh_file=$(ls -d cut_mesh/checkpoint-*)/mesh_fixed.data
+truncate -s -100 "$mesh_file"
+expect_refusal "truncated mesh file" cut_mesh "mesh_fixed.data' has .* bytes, but was written with" cut_mesh.prm
+
+echo "restart tests: $passes passed, $failures failed"
+[ $failures -eq 0 ]
