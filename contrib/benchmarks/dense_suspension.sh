@@ -11,6 +11,10 @@
 # tolerance there (a warning per step) and every further iteration is a
 # full solve, so the loop is capped at 3.
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
+# Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
+# CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
+# SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
+# from its newest checkpoint ('fidus --resume').
 # Usage: contrib/benchmarks/dense_suspension.sh [gluey|inelastic] \
 #          ["fictitious domain"|"undisturbed shear"] [strain, default 10] \
 #          [N, default 100] [phi, default 0.4] [max level, default 7]
@@ -20,7 +24,19 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 fidus="${FIDUS:-$top/build-release/fidus}"
 model="${1:-gluey}"; fluid="${2:-fictitious domain}"; strain="${3:-10}"
 n="${4:-100}"; phi="${5:-0.4}"; level="${6:-7}"
-work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+if [ -n "${WORK:-}" ]; then
+  mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
+else
+  work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+fi
+if [ -n "${RESUME:-}" ]; then
+  [ -f "$work/dense.prm" ] || { echo "RESUME=1 needs WORK=<dir> of an earlier run" >&2; exit 1; }
+  status=0
+  "$fidus" --resume "$work/dense.prm" || status=$?
+  "$top/contrib/benchmarks/summarize_run.sh" "$work/out"
+  if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
+  exit $status
+fi
 
 # Random sequential addition, minimum image in x, clear of the y walls.
 a=$(/usr/bin/python3 - "$n" "$phi" "$work/positions.txt" <<'PY'
@@ -69,6 +85,7 @@ subsection Mesh refinement
 end
 subsection Output
   set Progress interval = 25
+  set Checkpoint interval = ${CHECKPOINT:-0}
 end
 EOF2
 echo "N = $n, phi = $phi, a = $a, $model, $fluid, strain $strain, level $level"

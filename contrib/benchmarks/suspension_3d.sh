@@ -7,6 +7,10 @@
 # largest Uzawa and FGMRES counts per step, max |U| and |omega| over the
 # run, the wall time, and whether any value was NaN.
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
+# Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
+# CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
+# SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
+# from its newest checkpoint ('fidus --resume').
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
 #          [strain, default 1] [N, default 24] [phi, default 0.25] \
 #          [max level, default 4] [time step, default 0.1]
@@ -16,7 +20,19 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 fidus="${FIDUS:-$top/build-release/fidus}"
 model="${1:-gluey}"; strain="${2:-1}"; n="${3:-24}"; phi="${4:-0.25}"
 level="${5:-4}"; dt="${6:-0.1}"
-work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+if [ -n "${WORK:-}" ]; then
+  mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
+else
+  work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+fi
+if [ -n "${RESUME:-}" ]; then
+  [ -f "$work/suspension.prm" ] || { echo "RESUME=1 needs WORK=<dir> of an earlier run" >&2; exit 1; }
+  status=0
+  "$fidus" --resume "$work/suspension.prm" || status=$?
+  "$top/contrib/benchmarks/summarize_run.sh" "$work/out"
+  if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
+  exit $status
+fi
 
 # Random sequential addition, minimum image in x and z, clear of the y walls.
 a=$(/usr/bin/python3 - "$n" "$phi" "$work/positions.txt" <<'PY'
@@ -74,6 +90,7 @@ subsection Mesh refinement
 end
 subsection Output
   set Progress interval = 5
+  set Checkpoint interval = ${CHECKPOINT:-0}
 end
 EOF2
 echo "3D: N = $n, phi = $phi, a = $a, $model, strain $strain, level $level, dt $dt"

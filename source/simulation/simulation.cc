@@ -783,11 +783,9 @@ namespace Fidus
                      std::to_string(state.step) + " failed: " + error);
     bytes                = Utilities::MPI::broadcast(comm, bytes, 0);
     last_checkpoint_wall = wall_clock.wall_time();
-    if (prm.verbosity == Verbosity::verbose ||
-        (prm.verbosity == Verbosity::normal && StopRequest::signal_received()))
-      pcout << "checkpoint " << final_folder << ": " << bytes << " bytes, "
-            << std::fixed << std::setprecision(3) << clock.wall_time() << " s"
-            << std::defaultfloat << std::endl;
+    pcout << "checkpoint " << final_folder << ": " << bytes << " bytes, "
+          << std::fixed << std::setprecision(3) << clock.wall_time() << " s"
+          << std::defaultfloat << std::endl;
   }
 
 
