@@ -16,12 +16,13 @@ namespace Fidus
     if (solid.distance_to_surfaces(x, reach) < reach)
       return true;
 
-    // Gap rule: near both surfaces of a close pair.
+    // Gap rule: near both surfaces of a close pair. The candidates are
+    // entries of the indicator, periodic images included, so a pair across
+    // a periodic face is measured at its minimum-image distance.
     static thread_local std::vector<unsigned int> cands;
-    double                                        max_r = 0;
-    for (unsigned int i = 0; i < solid.n_particles(); ++i)
-      max_r = std::max(max_r, solid.radius(i));
-    solid.candidates(x, max_r * settings.gap_distance + 0.5 * h, cands);
+    solid.candidates(x,
+                     solid.max_radius() * settings.gap_distance + 0.5 * h,
+                     cands);
     for (unsigned int a = 0; a < cands.size(); ++a)
       for (unsigned int b = a + 1; b < cands.size(); ++b)
         {

@@ -42,7 +42,8 @@ namespace Fidus
                               const std::vector<double>                &r,
                               const Point<dim>            &lower_left,
                               const Point<dim>            &upper_right,
-                              const std::array<bool, dim> &periodic)
+                              const std::array<bool, dim> &periodic,
+                              const double                 halo)
   {
     n_real = pos.size();
     centers.resize(pos.size());
@@ -51,9 +52,10 @@ namespace Fidus
         centers[i][d] = pos[i][d];
     radii = r;
 
-    // Periodic images: shift every particle that crosses a periodic face by
-    // the period, in each direction and in each combination of directions
-    // (a particle in a corner has 3 images in 2D, up to 7 in 3D).
+    // Periodic images: shift every particle that crosses a periodic face,
+    // or comes within the halo of it, by the period, in each direction and
+    // in each combination of directions (a particle in a corner has 3
+    // images in 2D, up to 7 in 3D).
     image_owner.clear();
     for (unsigned int i = 0; i < n_real; ++i)
       {
@@ -64,9 +66,9 @@ namespace Fidus
             side[d] = 0;
             if (!periodic[d])
               continue;
-            if (centers[i][d] - radii[i] < lower_left[d])
+            if (centers[i][d] - radii[i] - halo < lower_left[d])
               side[d] = 1;
-            else if (centers[i][d] + radii[i] > upper_right[d])
+            else if (centers[i][d] + radii[i] + halo > upper_right[d])
               side[d] = -1;
             any = any || side[d] != 0;
           }
@@ -95,7 +97,8 @@ namespace Fidus
     double max_r = 0;
     for (const double a : radii)
       max_r = std::max(max_r, a);
-    double extent = 0;
+    largest_radius = max_r;
+    double extent  = 0;
     for (unsigned int d = 0; d < dim; ++d)
       extent = std::max(extent, upper_right[d] - lower_left[d]);
     // Bins of about one diameter, but never more than ~1e6 bins in all.

@@ -22,6 +22,12 @@ namespace Fidus
     for (unsigned int d = 1; d < dim; ++d)
       smallest_side = std::min(smallest_side, hi[d] - lo[d]);
     h_finest = smallest_side / std::pow(2., prm.maximum_level);
+    const double h_coarsest =
+      std::sqrt(double(dim)) * smallest_side /
+      std::pow(2., std::min(prm.initial_global_refinement, prm.minimum_level));
+    query_reach =
+      std::max((prm.interface_band + 0.5) * h_coarsest,
+               prm.gap_refinement_distance * a_max + 0.5 * h_coarsest);
 
     if (prm.boundary_condition == BoundaryCondition::sliding_walls)
       for (unsigned int d = 0; d < dim; ++d)

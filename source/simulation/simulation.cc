@@ -493,7 +493,12 @@ namespace Fidus
           }
         return;
       }
-    solid.reinit(state.X, prm.radii, box.lo, box.hi, box.is_periodic);
+    solid.reinit(state.X,
+                 prm.radii,
+                 box.lo,
+                 box.hi,
+                 box.is_periodic,
+                 box.query_reach);
     refine_mesh_if_particles_moved();
     solve_fluid();
     extract_rigid_motion();
@@ -511,7 +516,10 @@ namespace Fidus
       {
         double d2 = 0;
         for (unsigned int d = 0; d < dim; ++d)
-          d2 += std::pow(state.X[i][d] - state.X_at_remesh[i][d], 2);
+          d2 += std::pow(Contact::PairSearch::minimum_image(
+                           state.X[i][d] - state.X_at_remesh[i][d],
+                           box.periods[d]),
+                         2);
         moved = std::max(moved, std::sqrt(d2));
       }
     // Skip remeshing while no particle has left a fraction of the refined

@@ -33,16 +33,27 @@ namespace Fidus
     /**
      * Build the bins for the given particles; the bin grid covers the box.
      * Directions with @p periodic true get images of the particles that
-     * cross a face (positions must lie in the box in those directions).
+     * cross a face or come within @p halo of it (positions must lie in the
+     * box in those directions). The halo is the reach of the queries made
+     * near a face: with it, a point near a periodic face sees the particles
+     * near the opposite face at their minimum-image positions, so that the
+     * refinement band and the gap rule continue across the face.
      */
     void
     reinit(const std::vector<std::array<double, 3>> &positions,
            const std::vector<double>                &radii,
            const Point<dim>                         &lower_left,
            const Point<dim>                         &upper_right,
-           const std::array<bool, dim>              &periodic = {});
+           const std::array<bool, dim>              &periodic = {},
+           const double                              halo     = 0.);
 
-    /// Number of particles (not counting images).
+    /// Largest radius of all particles (0 if there are none).
+    double
+    max_radius() const
+    {
+      return largest_radius;
+    }
+
     unsigned int
     n_particles() const
     {
@@ -105,6 +116,7 @@ namespace Fidus
     distance_to_surfaces(const Point<dim> &x, const double search_radius) const;
 
   private:
+    double largest_radius = 0.;
     unsigned int
     bin_index(const std::array<int, dim> &b) const;
 

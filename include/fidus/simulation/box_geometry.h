@@ -32,6 +32,12 @@ namespace Fidus
     /// Shortest box side, and the finest cell size it gives.
     double smallest_side = 1., h_finest = 1.;
 
+    /// How far from a point the mesh refinement looks for particle
+    /// surfaces and close pairs, on the coarsest cells (MeshRefiner: the
+    /// band of (band + 1/2) cell diameters, the gap rule): the halo of
+    /// periodic images the solid indicator needs near a periodic face.
+    double query_reach = 0.;
+
     /// Periodic axes, as a list and per axis; their periods (0: not).
     std::vector<unsigned int> periodic;
     std::array<bool, dim>     is_periodic = {};
