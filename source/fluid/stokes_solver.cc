@@ -262,13 +262,32 @@ namespace Fidus
       is_velocity[k] = fe.system_to_component_index(k).first < dim;
 
     const double r = settings.penalty_factor;
+    shared.assign(triangulation.n_active_cells(), false);
+    n_shared_cells = 0;
+    std::vector<unsigned int> near;
+    // A cell whose solid lies within one cell diameter of another particle
+    // (two particles closer than a cell): one velocity polynomial cannot be
+    // two rigid motions there. With 'Shared cells = fluid' its solid part
+    // is treated as fluid (no penalty, no multiplier, not in the rigidity
+    // residual), and each particle keeps its rigid motion from the rest of
+    // its solid.
+    const auto near_two_particles = [&](const auto &cell) {
+      if (!settings.release_shared_cells || cands.empty())
+        return false;
+      solid.candidates(cell->center(), 1.5 * cell->diameter(), near);
+      for (const unsigned int k : near)
+        if (solid.owner(k) != solid.owner(near[0]))
+          return true;
+      return false;
+    };
     for (const auto &cell : cells)
       {
         solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+        const bool shared_cell = near_two_particles(cell);
         if (!cell->is_locally_owned())
           {
             // Ghost cells only mark the solid mask of locally owned DoFs.
-            if (cands.empty())
+            if (cands.empty() || shared_cell)
               continue;
             fe_values.reinit(cell);
             bool meets_solid = false;
@@ -297,9 +316,14 @@ namespace Fidus
             const bool inside =
               !cands.empty() && solid.particle_containing(x, cands) >= 0;
             meets_solid |= inside;
-            eta[q] = inside ? r * eta_f : eta_f;
+            eta[q] = inside && !shared_cell ? r * eta_f : eta_f;
           }
-        if (meets_solid)
+        if (meets_solid && shared_cell)
+          {
+            shared[cell->active_cell_index()] = true;
+            ++n_shared_cells;
+          }
+        if (meets_solid && !shared_cell)
           for (unsigned int k = 0; k < dofs_per_cell; ++k)
             if (is_velocity[k] && solid_mask.in_local_range(dofs[k]))
               solid_mask(dofs[k]) = 1.;
@@ -357,6 +381,7 @@ namespace Fidus
                                                dofs,
                                                preconditioner_matrix);
       }
+    n_shared_cells = Utilities::MPI::sum(n_shared_cells, mpi_communicator);
     system_matrix.compress(VectorOperation::add);
     preconditioner_matrix.compress(VectorOperation::add);
     base_rhs.compress(VectorOperation::add);
@@ -420,7 +445,7 @@ namespace Fidus
     std::vector<unsigned int>            cands;
 
     for (const auto &cell : cells)
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() && !shared[cell->active_cell_index()])
         {
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
           if (cands.empty())
@@ -453,7 +478,7 @@ namespace Fidus
 
 
   template <int dim>
-  double
+  std::pair<double, double>
   StokesSolver<dim>::rigidity_residual(const SolidIndicator<dim> &solid) const
   {
     FEValues<dim>                        fe_values(fe,
@@ -463,26 +488,28 @@ namespace Fidus
     const FEValuesExtractors::Vector     velocities(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<unsigned int>            cands;
-    double                               in_solid = 0, total = 0;
+    double sums[3] = {0, 0, 0}; // in the held solid, in shared cells, total
     for (const auto &cell : cells)
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[velocities].get_function_symmetric_gradients(solution, eps);
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+          const bool shared_cell = shared[cell->active_cell_index()];
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
               const double e2 = (eps[q] * eps[q]) * fe_values.JxW(q);
-              total += e2;
+              sums[2] += e2;
               if (!cands.empty() &&
                   solid.particle_containing(fe_values.quadrature_point(q),
                                             cands) >= 0)
-                in_solid += e2;
+                sums[shared_cell ? 1 : 0] += e2;
             }
         }
-    in_solid = Utilities::MPI::sum(in_solid, mpi_communicator);
-    total    = Utilities::MPI::sum(total, mpi_communicator);
-    return total > 0 ? std::sqrt(in_solid / total) : 0.;
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    if (!(sums[2] > 0))
+      return {0., 0.};
+    return {std::sqrt(sums[0] / sums[2]), std::sqrt(sums[1] / sums[2])};
   }
 
 
@@ -591,6 +618,7 @@ namespace Fidus
     make_constraints(boundary_velocity);
 
     assemble_system(solid, body_force, fluid_viscosity);
+    stats.shared_cells     = n_shared_cells;
     stats.assemble_seconds = timer.wall_time();
 
     timer.restart();
@@ -701,7 +729,9 @@ namespace Fidus
             assemble_multiplier_rhs(solid);
             stats.linear_iterations += solve_linear(stats);
             ++stats.uzawa_iterations;
-            stats.rigidity_residual = rigidity_residual(solid);
+            const auto [held, released] = rigidity_residual(solid);
+            stats.rigidity_residual     = held;
+            stats.shared_residual       = released;
             if (settings.verbose &&
                 Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
               std::cout << "    Uzawa " << k << ": rigidity residual "

@@ -1,6 +1,8 @@
 #include <cmath>
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 #include <fidus/core/input_error.h>
 #include <fidus/mesh/canonical_cell_order.h>
 #include <fidus/particles/rigid_motion.h>
@@ -12,11 +14,12 @@ namespace Fidus
   compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
                         const TrilinosWrappers::MPI::BlockVector &solution,
                         const SolidIndicator<dim>                &solid,
-                        const Quadrature<dim>                    &quadrature)
+                        const Quadrature<dim>                    &quadrature,
+                        const std::vector<bool> *excluded_cells)
   {
     const unsigned int n = solid.n_particles();
-    // Per particle: volume, int u (3), int r x u (3), J (9).
-    constexpr unsigned int           stride = 16;
+    // Per particle: volume, int u (3), int r x u (3), J (9), int r (3).
+    constexpr unsigned int           stride = 19;
     std::vector<double>              sums(n * stride, 0.);
     FEValues<dim>                    fe_values(dof_handler.get_fe(),
                             quadrature,
@@ -29,7 +32,8 @@ namespace Fidus
     // In mesh order, so that the sums are the same on a mesh loaded from a
     // checkpoint (canonical_cell_order).
     for (const auto &cell : canonical_cell_order(dof_handler))
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() &&
+          !(excluded_cells && (*excluded_cells)[cell->active_cell_index()]))
         {
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
           if (cands.empty())
@@ -62,6 +66,8 @@ namespace Fidus
               for (unsigned int a = 0; a < 3; ++a)
                 for (unsigned int b = 0; b < 3; ++b)
                   s[7 + 3 * a + b] += ((a == b ? r2 : 0.) - r[a] * r[b]) * JxW;
+              for (unsigned int d = 0; d < 3; ++d)
+                s[16 + d] += r[d] * JxW;
             }
         }
     Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
@@ -77,24 +83,50 @@ namespace Fidus
                          std::to_string(solid.radius(i)) +
                          " (raise 'Mesh refinement/Maximum level')");
         motions[i].volume = s[0];
-        for (unsigned int d = 0; d < dim; ++d)
-          motions[i].velocity[d] = s[1 + d] / s[0];
-        if (dim == 2)
-          // The 2D inertia about z is J_zz = int |r|^2.
-          motions[i].omega[2] = s[6] / s[7 + 8];
-        else
+        // Normal equations of min int |u - U - omega x r|^2 over the
+        // integrated part of the particle: with c = int r,
+        //   V U - c x omega = int u,   c x U + J omega = int r x u.
+        // c vanishes for a whole particle up to quadrature; it does not when
+        // cells are excluded (shared cells), where the two decouple no more.
+        FullMatrix<double> A(6, 6);
+        Vector<double>     b(6), x(6);
+        const double      *c           = &s[16];
+        const double       cross[3][3] = {{0, -c[2], c[1]},
+                                          {c[2], 0, -c[0]},
+                                          {-c[1], c[0], 0}};
+        for (unsigned int a = 0; a < 3; ++a)
           {
-            Tensor<2, 3> J;
-            Tensor<1, 3> m;
-            for (unsigned int a = 0; a < 3; ++a)
+            A(a, a)  = s[0];
+            b(a)     = s[1 + a];
+            b(3 + a) = s[4 + a];
+            for (unsigned int e = 0; e < 3; ++e)
               {
-                m[a] = s[4 + a];
-                for (unsigned int b = 0; b < 3; ++b)
-                  J[a][b] = s[7 + 3 * a + b];
+                A(a, 3 + e)     = -cross[a][e];
+                A(3 + a, e)     = cross[a][e];
+                A(3 + a, 3 + e) = s[7 + 3 * a + e];
               }
-            const Tensor<1, 3> w = invert(J) * m;
-            for (unsigned int a = 0; a < 3; ++a)
-              motions[i].omega[a] = w[a];
+          }
+        // 2D: the unknowns are U_x, U_y and omega_z.
+        const std::vector<unsigned int> unknowns =
+          dim == 2 ? std::vector<unsigned int>{0, 1, 5} :
+                     std::vector<unsigned int>{0, 1, 2, 3, 4, 5};
+        const unsigned int m = unknowns.size();
+        FullMatrix<double> Ar(m, m);
+        Vector<double>     br(m), xr(m);
+        for (unsigned int a = 0; a < m; ++a)
+          {
+            br(a) = b(unknowns[a]);
+            for (unsigned int e = 0; e < m; ++e)
+              Ar(a, e) = A(unknowns[a], unknowns[e]);
+          }
+        Ar.gauss_jordan();
+        Ar.vmult(xr, br);
+        for (unsigned int a = 0; a < m; ++a)
+          x(unknowns[a]) = xr(a);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            motions[i].velocity[d] = d < dim ? x(d) : 0.;
+            motions[i].omega[d]    = x(3 + d);
           }
         for (unsigned int d = 0; d < 3; ++d)
           if (!std::isfinite(motions[i].velocity[d]) ||
@@ -109,10 +141,12 @@ namespace Fidus
   compute_rigid_motions(const DoFHandler<2> &,
                         const TrilinosWrappers::MPI::BlockVector &,
                         const SolidIndicator<2> &,
-                        const Quadrature<2> &);
+                        const Quadrature<2> &,
+                        const std::vector<bool> *);
   template std::vector<RigidMotion>
   compute_rigid_motions(const DoFHandler<3> &,
                         const TrilinosWrappers::MPI::BlockVector &,
                         const SolidIndicator<3> &,
-                        const Quadrature<3> &);
+                        const Quadrature<3> &,
+                        const std::vector<bool> *);
 } // namespace Fidus

@@ -33,6 +33,8 @@ namespace Fidus
       s << "  cells " << cells << "  Uzawa " << uzawa << "  FGMRES " << fgmres
         << "  rigidity " << std::scientific << std::setprecision(1)
         << rigidity_residual << std::defaultfloat;
+    if (fluid && shared > 0)
+      s << "  shared " << shared;
     s << "  contacts " << active << "/" << glued << "  ETA "
       << format_duration(eta);
     return s.str();

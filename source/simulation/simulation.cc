@@ -69,7 +69,9 @@ namespace Fidus
                                                          "glued_contacts",
                                                          "wall_seconds",
                                                          "remeshed",
-                                                         "contact_iterations"};
+                                                         "contact_iterations",
+                                                         "shared_cells",
+                                                         "shared_residual"};
   } // namespace
 
 
@@ -130,6 +132,7 @@ namespace Fidus
     ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
     ss.amg_smoother_type         = prm.amg_smoother_type;
     ss.reuse_multiplier          = prm.reuse_multiplier;
+    ss.release_shared_cells      = prm.release_shared_cells;
     ss.verbose                   = prm.verbosity == Verbosity::verbose;
     solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
 
@@ -210,6 +213,8 @@ namespace Fidus
     s.uzawa_failures          = state.totals.uzawa_failures;
     s.contact_failures        = state.totals.contact_failures;
     s.max_contact_iterations  = state.totals.max_contact_iterations;
+    s.max_shared_cells        = state.totals.max_shared_cells;
+    s.max_shared_residual     = state.totals.max_shared_residual;
     s.n_cells                 = fictitious ? tria->n_global_active_cells() : 0;
     s.n_dofs                  = fictitious ? solver->n_dofs() : 0;
     s.wall_seconds            = elapsed_wall_seconds();
@@ -578,7 +583,8 @@ namespace Fidus
       compute_rigid_motions(solver->get_dof_handler(),
                             solver->get_solution(),
                             solid,
-                            solver->get_quadrature());
+                            solver->get_quadrature(),
+                            &solver->get_shared_cells());
     for (unsigned int i = 0; i < n; ++i)
       {
         state.U[i] = motions[i].velocity;
@@ -639,6 +645,10 @@ namespace Fidus
       std::max(totals.max_linear_iterations, fluid_stats.linear_iterations);
     totals.max_rigidity_residual =
       std::max(totals.max_rigidity_residual, fluid_stats.rigidity_residual);
+    totals.max_shared_cells =
+      std::max(totals.max_shared_cells, fluid_stats.shared_cells);
+    totals.max_shared_residual =
+      std::max(totals.max_shared_residual, fluid_stats.shared_residual);
 
     const double cells =
       fictitious ? double(tria->n_global_active_cells()) : 0.;
@@ -656,7 +666,9 @@ namespace Fidus
                                double(n_glued),
                                elapsed_wall_seconds(),
                                double(remeshed),
-                               double(contact_iterations)});
+                               double(contact_iterations),
+                               double(fluid_stats.shared_cells),
+                               fluid_stats.shared_residual});
 
     if (field_output && s.step % prm.field_output_interval == 0)
       field_output->write(*solver, solid, s.step, s.time);
@@ -690,6 +702,7 @@ namespace Fidus
         line.uzawa             = fluid_stats.uzawa_iterations;
         line.fgmres            = fluid_stats.linear_iterations;
         line.rigidity_residual = fluid_stats.rigidity_residual;
+        line.shared            = fluid_stats.shared_cells;
         line.active            = n_active;
         line.glued             = n_glued;
         line.eta               = s.time > 0 ?

@@ -93,6 +93,7 @@ namespace Fidus
     double       rigidity_tolerance        = 1e-3;
     unsigned int max_uzawa_iterations      = 50;
     bool         reuse_multiplier          = true;
+    bool         release_shared_cells      = false;
     double       linear_tolerance          = 1e-6;
     unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;

@@ -14,6 +14,7 @@
 #include <fidus/particles/solid_indicator.h>
 #include <memory>
 #include <set>
+#include <utility>
 #include <vector>
 
 namespace Fidus
@@ -57,6 +58,10 @@ namespace Fidus
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
+      /// Treat the solid part of shared cells (within one cell diameter of
+      /// two particles) as fluid; false: the seed's model (rigid wherever
+      /// there is solid, which cannot be met there).
+      bool release_shared_cells = false;
       /// Accelerate the Uzawa loop (Anderson mixing of depth 5 in the energy
       /// inner product). Off by default: on cut-cell slivers it stagnates at
       /// the same residual as plain Uzawa (see doc/fluid.md).
@@ -73,7 +78,11 @@ namespace Fidus
       unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
       unsigned int expensive_solves  = 0;
       double       rigidity_residual = 0.;
-      bool         uzawa_converged   = true;
+      /// Cells whose solid was released (Settings::release_shared_cells),
+      /// and the rigidity residual of the solid in them (reported only).
+      unsigned int shared_cells    = 0;
+      double       shared_residual = 0.;
+      bool         uzawa_converged = true;
       /// The Uzawa loop stopped early: no progress (see solve()).
       bool   uzawa_stalled    = false;
       double assemble_seconds = 0.;
@@ -167,6 +176,14 @@ namespace Fidus
       return dof_handler.n_dofs();
     }
 
+    /// Per active cell (active_cell_index): whether the last solve treated
+    /// its solid part as fluid (a shared cell).
+    const std::vector<bool> &
+    get_shared_cells() const
+    {
+      return shared;
+    }
+
     /// Invalidate the multiplier warm start (the solid moved).
     void
     reset_multiplier();
@@ -212,7 +229,10 @@ namespace Fidus
                     const Function<dim>       *fluid_viscosity);
     void
     assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
-    double
+    /// sqrt(int |e(u)|^2 / int_box |e(u)|^2) over the solid outside shared
+    /// cells (what the Uzawa loop drives down), and over the solid in
+    /// shared cells (released, reported only).
+    std::pair<double, double>
     rigidity_residual(const SolidIndicator<dim> &solid) const;
     unsigned int
     solve_linear(Statistics &stats);
@@ -229,6 +249,10 @@ namespace Fidus
     /// Locally owned and ghost cells in mesh order (canonical_cell_order):
     /// every loop that adds up over cells runs in this order.
     std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+
+    /// Shared cells of the last assembly, and how many (all ranks).
+    std::vector<bool> shared;
+    unsigned int      n_shared_cells = 0;
 
     std::vector<unsigned int>    periodic_directions;
     std::set<types::boundary_id> dirichlet_ids;

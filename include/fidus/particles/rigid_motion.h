@@ -24,18 +24,25 @@ namespace Fidus
   /**
    * L2 projection of the discrete velocity onto the rigid motions of each
    * particle (numerics section 2), with the same indicator and quadrature as
-   * the penalty term:
-   *   U_i = (1/|P_i|) int_{P_i} u,   omega_i = J_i^{-1} int_{P_i} r x u,
-   *   J_i = int_{P_i} (|r|^2 I - r (x) r),   r = x - X_i.
-   * Integrals are summed over locally owned cells and reduced over MPI, so
-   * every rank gets every particle's motion.
+   * the penalty term: (U_i, omega_i) minimise int_{P_i} |u - U - omega x r|^2,
+   * r = x - X_i, i.e.
+   *   |P_i| U - c x omega = int_{P_i} u,   c x U + J_i omega = int_{P_i} r x u,
+   *   J_i = int_{P_i} (|r|^2 I - r (x) r),   c = int_{P_i} r,
+   * solved as one system. For a whole particle c vanishes up to quadrature
+   * and this is U_i = mean of u, omega_i = J_i^{-1} int r x u; it does not
+   * vanish when cells are left out. Integrals are summed over locally owned
+   * cells and reduced over MPI, so every rank gets every particle's motion.
+   * Cells flagged in
+   * @p excluded_cells (indexed by active_cell_index; shared cells, whose
+   * solid part is not held rigid) are left out.
    */
   template <int dim>
   std::vector<RigidMotion>
   compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
                         const TrilinosWrappers::MPI::BlockVector &solution,
                         const SolidIndicator<dim>                &solid,
-                        const Quadrature<dim>                    &quadrature);
+                        const Quadrature<dim>                    &quadrature,
+                        const std::vector<bool> *excluded_cells = nullptr);
 } // namespace Fidus
 
 #endif

@@ -19,7 +19,9 @@ namespace Fidus
     unsigned long long cells = 0;
     unsigned int       uzawa = 0, fgmres = 0;
     double             rigidity_residual = 0.;
-    unsigned int       active = 0, glued = 0;
+    /// Cells whose solid was released (two particles closer than a cell).
+    unsigned int shared = 0;
+    unsigned int active = 0, glued = 0;
     /// Estimated wall seconds to the End time.
     double eta = 0.;
 

@@ -26,6 +26,10 @@ namespace Fidus
     unsigned int uzawa_failures          = 0;
     unsigned int contact_failures        = 0;
     unsigned int max_contact_iterations  = 0;
+    /// Largest number of shared cells of a solve, and the largest rigidity
+    /// residual in them (released, so reported only).
+    unsigned int max_shared_cells    = 0;
+    double       max_shared_residual = 0.;
   };
 
   /**

@@ -46,6 +46,10 @@ namespace Fidus
     /// of dual-solver iterations of any projection.
     unsigned int uzawa_failures = 0, contact_failures = 0,
                  max_contact_iterations = 0;
+    /// Largest number of shared cells of a solve (their solid released)
+    /// and the largest rigidity residual in them.
+    unsigned int max_shared_cells    = 0;
+    double       max_shared_residual = 0.;
     /// Cells and DoFs of the last solve.
     unsigned long long n_cells = 0, n_dofs = 0;
     /// Errors of the 'exact rigid inclusion' scene (else 0): L2 and H1 of u
