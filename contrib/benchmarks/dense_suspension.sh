@@ -11,8 +11,9 @@
 # tolerance there (a warning per step) and every further iteration is a
 # full solve, so the loop is capped at 3.
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
-# MAX_UZAWA=<n> (default 3) and SHARED_CELLS=rigid|fluid (default rigid)
-# set Fluid/Maximum Uzawa iterations and Fluid/Shared cells.
+# MAX_UZAWA=<n> (default 3), SHARED_CELLS=rigid|fluid (default rigid) and
+# REUSE=true|false (default true) set Fluid/Maximum Uzawa iterations,
+# Fluid/Shared cells and Fluid/Reuse multiplier.
 # Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
@@ -69,6 +70,7 @@ subsection Fluid
   set Model = $fluid
   set Maximum Uzawa iterations = ${MAX_UZAWA:-3}
   set Shared cells = ${SHARED_CELLS:-rigid}
+  set Reuse multiplier = ${REUSE:-true}
 end
 subsection Particles
   set Radius = $a

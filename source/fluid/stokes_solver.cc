@@ -265,18 +265,26 @@ namespace Fidus
     shared.assign(triangulation.n_active_cells(), false);
     n_shared_cells = 0;
     std::vector<unsigned int> near;
-    // A cell whose solid lies within one cell diameter of another particle
-    // (two particles closer than a cell): one velocity polynomial cannot be
-    // two rigid motions there. With 'Shared cells = fluid' its solid part
-    // is treated as fluid (no penalty, no multiplier, not in the rigidity
-    // residual), and each particle keeps its rigid motion from the rest of
-    // its solid.
+    // A cell whose solid lies within half a cell diameter of another
+    // particle (its bounding ball grown by half a diameter, about the reach
+    // of the cells that share DoFs with it; two particles closer than a
+    // cell), or that touches a face with imposed velocity: one velocity
+    // polynomial cannot be two rigid motions there. With
+    // 'Shared cells = fluid' its solid part is treated as fluid (no penalty, no
+    // multiplier, not in the rigidity residual), and each particle keeps its
+    // rigid motion from the rest of its solid.
     const auto near_two_particles = [&](const auto &cell) {
       if (!settings.release_shared_cells || cands.empty())
         return false;
-      solid.candidates(cell->center(), 1.5 * cell->diameter(), near);
+      solid.candidates(cell->center(), cell->diameter(), near);
       for (const unsigned int k : near)
         if (solid.owner(k) != solid.owner(near[0]))
+          return true;
+      // A face with imposed velocity is the other motion of a particle
+      // that touches a wall.
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() &&
+            dirichlet_ids.count(cell->face(f)->boundary_id()) > 0)
           return true;
       return false;
     };
@@ -697,6 +705,18 @@ namespace Fidus
       {
         distributed_multiplier = 0;
         multiplier             = distributed_multiplier;
+      }
+    else
+      {
+        // The warm start lives on the solid of the previous step. Its
+        // values on DoFs that are no longer in the solid mask (the particle
+        // moved off them, or their cells are now shared) would never be
+        // updated by the loop, which only changes masked DoFs, yet they
+        // still load the held solid next to them through e(lambda): a
+        // frozen error that stalled the loop every other step in a dense
+        // suspension (doc/fluid.md). Keep only the masked part.
+        distributed_multiplier.block(0).scale(solid_mask.block(0));
+        multiplier = distributed_multiplier;
       }
     if (solid.n_particles() == 0)
       {

@@ -18,9 +18,10 @@ namespace Fidus
                         const std::vector<bool> *excluded_cells)
   {
     const unsigned int n = solid.n_particles();
-    // Per particle: volume, int u (3), int r x u (3), J (9), int r (3).
+    // Per particle: volume, int u (3), int r x u (3), J (9), int r (3);
+    // over the whole solid, then over the solid outside excluded cells.
     constexpr unsigned int           stride = 19;
-    std::vector<double>              sums(n * stride, 0.);
+    std::vector<double>              sums(2 * n * stride, 0.);
     FEValues<dim>                    fe_values(dof_handler.get_fe(),
                             quadrature,
                             update_values | update_quadrature_points |
@@ -32,9 +33,10 @@ namespace Fidus
     // In mesh order, so that the sums are the same on a mesh loaded from a
     // checkpoint (canonical_cell_order).
     for (const auto &cell : canonical_cell_order(dof_handler))
-      if (cell->is_locally_owned() &&
-          !(excluded_cells && (*excluded_cells)[cell->active_cell_index()]))
+      if (cell->is_locally_owned())
         {
+          const bool held =
+            !(excluded_cells && (*excluded_cells)[cell->active_cell_index()]);
           solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
           if (cands.empty())
             continue;
@@ -48,26 +50,30 @@ namespace Fidus
                 continue;
               // A periodic image adds to its particle, with the lever arm
               // taken from the image's centre.
-              const double JxW  = fe_values.JxW(q);
-              double      *s    = &sums[solid.owner(k) * stride];
-              double       r[3] = {0, 0, 0}, v[3] = {0, 0, 0};
-              for (unsigned int d = 0; d < dim; ++d)
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int part = 0; part < (held ? 2u : 1u); ++part)
                 {
-                  r[d] = x[d] - solid.center(k)[d];
-                  v[d] = u[q][d];
+                  double *s    = &sums[(part * n + solid.owner(k)) * stride];
+                  double  r[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      r[d] = x[d] - solid.center(k)[d];
+                      v[d] = u[q][d];
+                    }
+                  s[0] += JxW;
+                  for (unsigned int d = 0; d < 3; ++d)
+                    s[1 + d] += v[d] * JxW;
+                  s[4] += (r[1] * v[2] - r[2] * v[1]) * JxW;
+                  s[5] += (r[2] * v[0] - r[0] * v[2]) * JxW;
+                  s[6] += (r[0] * v[1] - r[1] * v[0]) * JxW;
+                  const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+                  for (unsigned int a = 0; a < 3; ++a)
+                    for (unsigned int b = 0; b < 3; ++b)
+                      s[7 + 3 * a + b] +=
+                        ((a == b ? r2 : 0.) - r[a] * r[b]) * JxW;
+                  for (unsigned int d = 0; d < 3; ++d)
+                    s[16 + d] += r[d] * JxW;
                 }
-              s[0] += JxW;
-              for (unsigned int d = 0; d < 3; ++d)
-                s[1 + d] += v[d] * JxW;
-              s[4] += (r[1] * v[2] - r[2] * v[1]) * JxW;
-              s[5] += (r[2] * v[0] - r[0] * v[2]) * JxW;
-              s[6] += (r[0] * v[1] - r[1] * v[0]) * JxW;
-              const double r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-              for (unsigned int a = 0; a < 3; ++a)
-                for (unsigned int b = 0; b < 3; ++b)
-                  s[7 + 3 * a + b] += ((a == b ? r2 : 0.) - r[a] * r[b]) * JxW;
-              for (unsigned int d = 0; d < 3; ++d)
-                s[16 + d] += r[d] * JxW;
             }
         }
     Utilities::MPI::sum(sums, dof_handler.get_communicator(), sums);
@@ -75,7 +81,12 @@ namespace Fidus
     std::vector<RigidMotion> motions(n);
     for (unsigned int i = 0; i < n; ++i)
       {
-        const double *s = &sums[i * stride];
+        // The fit over the held solid, unless excluded cells leave less
+        // than a quarter of the particle (a particle packed in on all
+        // sides): then over all of it, as without exclusion.
+        const double *all  = &sums[i * stride];
+        const double *held = &sums[(n + i) * stride];
+        const double *s    = held[0] >= 0.25 * all[0] ? held : all;
         if (!(s[0] > 0.))
           throw RunError("particle " + std::to_string(i) +
                          " contains no quadrature point: the mesh is too "

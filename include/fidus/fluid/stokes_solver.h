@@ -58,7 +58,7 @@ namespace Fidus
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
-      /// Treat the solid part of shared cells (within one cell diameter of
+      /// Treat the solid part of shared cells (within half a cell diameter of
       /// two particles) as fluid; false: the seed's model (rigid wherever
       /// there is solid, which cannot be met there).
       bool release_shared_cells = false;

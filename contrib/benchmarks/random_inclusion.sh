@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The exact rigid inclusion at random positions: the particle's velocity
+# error depends on where it sits relative to the mesh, which is noise along
+# a trajectory. For N positions drawn (seeded) in the middle of the unit box
+# (x, y in [0.4, 0.6]), radius a, at each maximum level, prints the largest
+# and mean |U| / (g a) (exact 0) and relative omega error.
+# Usage: contrib/benchmarks/random_inclusion.sh [a, default 0.05] [levels, default "6 7 8"] [N, default 6]
+# FIDUS=<binary> uses another build; OLD=<binary> adds the same rows for it.
+set -euo pipefail
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+[ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
+fidus="${FIDUS:-$top/build-release/fidus}"
+a="${1:-0.05}"; levels="${2:-6 7 8}"; n="${3:-6}"
+work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+positions=$(awk -v n="$n" 'BEGIN { srand(7); for (i = 0; i < n; ++i) printf "%.6f,%.6f\n", 0.4 + 0.2 * rand(), 0.4 + 0.2 * rand() }')
+
+echo "| binary | level | max \|U\|/(g a) | mean \|U\|/(g a) | max omega error | mean omega error |"
+echo "|---|---|---|---|---|---|"
+for binary in ${OLD:-} "$fidus"; do
+  for level in $levels; do
+    rm -f "$work/errors.txt"
+    for p in $positions; do
+      cat > "$work/run.prm" <<EOF2
+set Dimension = 2
+set Output directory = $work/out
+subsection Domain
+  set Boundary condition = exact rigid inclusion
+end
+subsection Particles
+  set Radius = $a
+  set Positions = $p
+end
+subsection Time stepping
+  set End time = 0
+end
+subsection Mesh refinement
+  set Initial global refinement = 3
+  set Minimum level = 3
+  set Maximum level = $level
+end
+EOF2
+      "$binary" "$work/run.prm" 2> /dev/null | grep "exact rigid inclusion" |
+        sed 's/.*relative omega error \([^,]*\), |U|\/(g a) \(.*\)/\2 \1/' >> "$work/errors.txt"
+    done
+    awk -v b="$(basename "$binary")" -v l="$level" '
+      { if ($1 > mu) mu = $1; su += $1; if ($2 > mw) mw = $2; sw += $2; k++ }
+      END { printf "| %s | %d | %.2e | %.2e | %.2e | %.2e |\n", b, l, mu, su / k, mw, sw / k }' "$work/errors.txt"
+  done
+done
