@@ -110,8 +110,29 @@ main(int argc, char **argv)
       // A resumed run checks its checkpoint before it writes anything.
       std::unique_ptr<Checkpoint::ResumePoint> resume_point;
       if (resume)
-        resume_point = std::make_unique<Checkpoint::ResumePoint>(
-          Checkpoint::find_and_check(parameters));
+        {
+          // Rank 0 checks the whole checkpoint (it reads the mesh files in
+          // full for their checksums), the others only read state.bin once
+          // it passed; every rank then stops or goes on together.
+          std::string problem;
+          if (root)
+            try
+              {
+                resume_point = std::make_unique<Checkpoint::ResumePoint>(
+                  Checkpoint::find_and_check(parameters));
+              }
+            catch (const InputError &e)
+              {
+                problem = e.what();
+              }
+          problem =
+            dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, problem, 0);
+          if (!problem.empty())
+            throw InputError(problem);
+          if (!root)
+            resume_point = std::make_unique<Checkpoint::ResumePoint>(
+              Checkpoint::find_and_check(parameters, false));
+        }
       if (root)
         {
           std::filesystem::create_directories(parameters.output_directory);

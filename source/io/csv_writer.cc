@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fidus/core/input_error.h>
 #include <fidus/io/csv_writer.h>
 #include <iomanip>
@@ -41,12 +43,22 @@ namespace Fidus
     {
       std::ofstream kept(kept_name);
       kept << line << '\n';
+      // Keep a row only if it is whole (as many fields as the header) and
+      // its step parses and is not beyond the checkpoint: a run killed in
+      // the middle of a row leaves a partial last line, which is dropped.
       while (std::getline(in, line))
         {
-          const std::size_t comma = line.find(',');
-          if (line.empty() || comma == 0)
+          if (static_cast<std::size_t>(
+                std::count(line.begin(), line.end(), ',')) +
+                1 !=
+              n_columns)
             continue;
-          if (std::stoll(line.substr(0, comma)) <= (long long)last_step)
+          const std::string step_text = line.substr(0, line.find(','));
+          char             *end       = nullptr;
+          const long long   step = std::strtoll(step_text.c_str(), &end, 10);
+          if (step_text.empty() || *end != '\0' || step < 0)
+            continue;
+          if (step <= static_cast<long long>(last_step))
             kept << line << '\n';
         }
       if (!kept)

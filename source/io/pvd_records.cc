@@ -1,4 +1,5 @@
 #include <cctype>
+#include <cstdlib>
 #include <fidus/io/pvd_records.h>
 #include <fstream>
 #include <sstream>
@@ -52,7 +53,12 @@ namespace Fidus
         if (time.empty() || file.empty() || step < 0 ||
             step > static_cast<long>(last_step))
           continue;
-        records.emplace_back(std::stod(time), file);
+        // A damaged entry (a run killed while writing the file) is dropped.
+        char        *end = nullptr;
+        const double t   = std::strtod(time.c_str(), &end);
+        if (*end != '\0')
+          continue;
+        records.emplace_back(t, file);
       }
     return records;
   }

@@ -59,38 +59,55 @@ namespace Fidus
     image_owner.clear();
     for (unsigned int i = 0; i < n_real; ++i)
       {
-        std::array<int, dim> side;
-        bool                 any = false;
+        // Per periodic axis, which shifts (by -L, +L) bring an image within
+        // reach of the box: +L when the particle (grown by the halo) reaches
+        // over the lower face, -L over the upper one; both when the halo is
+        // wider than the box.
+        std::array<std::array<bool, 2>, dim> shift;
+        bool                                 any = false;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            side[d] = 0;
+            shift[d] = {{false, false}};
             if (!periodic[d])
               continue;
-            if (centers[i][d] - radii[i] - halo < lower_left[d])
-              side[d] = 1;
-            else if (centers[i][d] + radii[i] + halo > upper_right[d])
-              side[d] = -1;
-            any = any || side[d] != 0;
+            shift[d][0] = centers[i][d] + radii[i] + halo > upper_right[d];
+            shift[d][1] = centers[i][d] - radii[i] - halo < lower_left[d];
+            any         = any || shift[d][0] || shift[d][1];
           }
         if (!any)
           continue;
-        for (unsigned int mask = 1; mask < (1u << dim); ++mask)
+        // Every combination of an offset in {-1, 0, +1} per axis, but the
+        // particle itself (3^dim - 1 candidates).
+        std::array<int, dim> offset;
+        std::fill(offset.begin(), offset.end(), -1);
+        while (true)
           {
-            bool       valid = true;
-            Point<dim> c     = centers[i];
+            bool valid = false, allowed = true;
             for (unsigned int d = 0; d < dim; ++d)
-              if (mask & (1u << d))
+              if (offset[d] != 0)
                 {
-                  if (side[d] == 0)
-                    valid = false;
-                  else
-                    c[d] += side[d] * (upper_right[d] - lower_left[d]);
+                  valid = true;
+                  if (!shift[d][offset[d] > 0 ? 1 : 0])
+                    allowed = false;
                 }
-            if (!valid)
-              continue;
-            centers.push_back(c);
-            radii.push_back(radii[i]);
-            image_owner.push_back(i);
+            if (valid && allowed)
+              {
+                Point<dim> c = centers[i];
+                for (unsigned int d = 0; d < dim; ++d)
+                  c[d] += offset[d] * (upper_right[d] - lower_left[d]);
+                centers.push_back(c);
+                radii.push_back(radii[i]);
+                image_owner.push_back(i);
+              }
+            unsigned int d = 0;
+            for (; d < dim; ++d)
+              {
+                if (++offset[d] <= 1)
+                  break;
+                offset[d] = -1;
+              }
+            if (d == dim)
+              break;
           }
       }
 

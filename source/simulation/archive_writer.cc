@@ -3,9 +3,11 @@
 namespace Fidus
 {
   std::uint64_t
-  ArchiveWriter::checksum(const char *data, const std::size_t size)
+  ArchiveWriter::checksum(const char         *data,
+                          const std::size_t   size,
+                          const std::uint64_t previous)
   {
-    std::uint64_t h = 14695981039346656037ULL;
+    std::uint64_t h = previous;
     for (std::size_t i = 0; i < size; ++i)
       {
         h ^= static_cast<unsigned char>(data[i]);

@@ -22,8 +22,17 @@ namespace Fidus
     for (unsigned int d = 1; d < dim; ++d)
       smallest_side = std::min(smallest_side, hi[d] - lo[d]);
     h_finest = smallest_side / std::pow(2., prm.maximum_level);
+    // The coarse cells of create_box_mesh: each side divided into
+    // round(side / smallest side) parts, then refined globally.
+    double coarse_diameter2 = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double side = hi[d] - lo[d];
+        coarse_diameter2 +=
+          std::pow(side / std::max(1., std::round(side / smallest_side)), 2);
+      }
     const double h_coarsest =
-      std::sqrt(double(dim)) * smallest_side /
+      std::sqrt(coarse_diameter2) /
       std::pow(2., std::min(prm.initial_global_refinement, prm.minimum_level));
     query_reach =
       std::max((prm.interface_band + 0.5) * h_coarsest,

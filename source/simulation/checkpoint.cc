@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <fcntl.h>
 #include <fidus/core/input_error.h>
 #include <fidus/simulation/archive_reader.h>
 #include <fidus/simulation/archive_writer.h>
@@ -7,6 +8,9 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <unistd.h>
+#include <utility>
+#include <vector>
 
 namespace Fidus
 {
@@ -38,12 +42,14 @@ namespace Fidus
       return s.str();
     }
 
-    /// Step of a complete checkpoint folder name, or -1.
+    /// Step of a complete checkpoint folder name (checkpoint- and six or
+    /// more digits: a run may pass step 999999), or -1.
     long
     step_of_folder(const std::string &name)
     {
       const std::string prefix = "checkpoint-";
-      if (name.size() != prefix.size() + 6 || name.rfind(prefix, 0) != 0)
+      if (name.size() < prefix.size() + 6 || name.rfind(prefix, 0) != 0 ||
+          name.size() > prefix.size() + 18)
         return -1;
       const std::string digits = name.substr(prefix.size());
       if (!std::all_of(digits.begin(), digits.end(), [](char c) {
@@ -51,6 +57,41 @@ namespace Fidus
           }))
         return -1;
       return std::stol(digits);
+    }
+
+    /// Size and FNV-1a checksum of a file, read in chunks (a 3D mesh file
+    /// can be large); size -1 if it cannot be read.
+    std::pair<long long, std::uint64_t>
+    size_and_checksum(const std::string &name)
+    {
+      std::ifstream in(name, std::ios::binary);
+      if (!in)
+        return {-1, 0};
+      std::uint64_t     h    = ArchiveWriter::checksum(nullptr, 0);
+      long long         size = 0;
+      std::vector<char> chunk(1 << 20);
+      while (in)
+        {
+          in.read(chunk.data(), chunk.size());
+          const std::streamsize got = in.gcount();
+          h = ArchiveWriter::checksum(chunk.data(), got, h);
+          size += got;
+        }
+      return {size, h};
+    }
+
+    /// Write a file's data (or a folder's entries) to the disk before a
+    /// rename makes it the checkpoint: a crash must not leave a complete
+    /// name over incomplete content.
+    void
+    flush_to_disk(const std::string &name)
+    {
+      const int fd = ::open(name.c_str(), O_RDONLY);
+      if (fd >= 0)
+        {
+          ::fsync(fd);
+          ::close(fd);
+        }
     }
 
     std::string
@@ -131,12 +172,15 @@ namespace Fidus
     a.put<std::uint64_t>(mesh_files.size());
     for (const std::string &name : mesh_files)
       {
-        const std::string content = read_file(temporary + "/" + name);
+        const auto [size, sum] = size_and_checksum(temporary + "/" + name);
+        if (size < 0)
+          throw RunError("cannot read the checkpoint file '" + temporary + "/" +
+                         name + "'");
         a.put(name);
-        a.put<std::uint64_t>(content.size());
-        a.put<std::uint64_t>(
-          ArchiveWriter::checksum(content.data(), content.size()));
-        bytes += content.size();
+        a.put<std::uint64_t>(size);
+        a.put<std::uint64_t>(sum);
+        bytes += size;
+        flush_to_disk(temporary + "/" + name);
       }
     state.save(a);
 
@@ -150,11 +194,15 @@ namespace Fidus
                        "/state.bin'");
     }
     bytes += image.size();
+    flush_to_disk(temporary + "/state.bin");
+    flush_to_disk(temporary);
 
-    // The new checkpoint is complete: give it its name, then remove the
-    // older ones (and temporary folders of writes that were cut off).
+    // The new checkpoint is complete and on disk: give it its name, then
+    // remove the older ones (and temporary folders of writes that were cut
+    // off).
     fs::remove_all(final_folder);
     fs::rename(temporary, final_folder);
+    flush_to_disk(fs::path(final_folder).parent_path().string());
     const fs::path    parent = fs::path(final_folder).parent_path();
     const std::string keep   = fs::path(final_folder).filename().string();
     for (const auto &entry : fs::directory_iterator(parent))
@@ -174,7 +222,7 @@ namespace Fidus
 
 
   Checkpoint::ResumePoint
-  Checkpoint::find_and_check(const Parameters &prm)
+  Checkpoint::find_and_check(const Parameters &prm, const bool verify_files)
   {
     const std::string dir    = prm.output_directory;
     long              newest = -1;
@@ -267,13 +315,18 @@ namespace Fidus
         const auto        size     = a.get<std::uint64_t>();
         const auto        checksum = a.get<std::uint64_t>();
         const std::string path     = r.folder + "/" + name;
-        const std::string content  = read_file(path);
-        if (content.size() != size ||
-            ArchiveWriter::checksum(content.data(), content.size()) != checksum)
+        if (!verify_files)
+          continue;
+        const auto [found, sum] = size_and_checksum(path);
+        if (found < 0)
+          read_file(path); // throws, naming the missing file
+        if (found != static_cast<long long>(size) || sum != checksum)
           throw InputError(
             "--resume: the checkpoint file '" + path + "' has " +
-            std::to_string(content.size()) + " bytes" +
-            (content.size() == size ? " and a different checksum" : "") +
+            std::to_string(found) + " bytes" +
+            (found == static_cast<long long>(size) ?
+               " and a different checksum" :
+               "") +
             ", but was written with " + std::to_string(size) +
             " bytes (truncated or damaged); allowed: a checkpoint written "
             "completely by fidus (remove this checkpoint folder to start "
@@ -289,11 +342,12 @@ namespace Fidus
 
     // The run's CSV files are continued, so they must be there.
     for (const char *csv : {"particles.csv", "statistics.csv"})
-      if (!fs::exists(dir + "/" + csv))
-        throw InputError("--resume: the file '" + dir + "/" + csv +
-                         "' of the run that wrote '" + r.folder +
-                         "' is missing; allowed: the Output directory as "
-                         "that run left it");
+      if (verify_files)
+        if (!fs::exists(dir + "/" + csv))
+          throw InputError("--resume: the file '" + dir + "/" + csv +
+                           "' of the run that wrote '" + r.folder +
+                           "' is missing; allowed: the Output directory as "
+                           "that run left it");
     return r;
   }
 } // namespace Fidus

@@ -228,6 +228,17 @@ namespace Fidus
   void
   Simulation<dim>::start()
   {
+    // A new run rewrites the CSV files of this Output directory, so a
+    // checkpoint of an earlier run there no longer matches them: remove it,
+    // so that '--resume' cannot continue the old run into the new files.
+    if (root)
+      for (const auto &entry :
+           std::filesystem::directory_iterator(prm.output_directory))
+        if (entry.path().filename().string().rfind("checkpoint-", 0) == 0)
+          {
+            std::error_code ignored;
+            std::filesystem::remove_all(entry.path(), ignored);
+          }
     state.initialise(prm.positions);
     particles_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
@@ -268,27 +279,40 @@ namespace Fidus
                                      state.multiplier_valid);
       }
     // Rows and collection entries after the checkpoint's step are dropped:
-    // those steps are computed again.
-    particles_csv =
-      std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
-                                  particle_columns,
-                                  root,
-                                  state.step);
-    statistics_csv =
-      std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                  statistics_columns,
-                                  root,
-                                  state.step);
-    particle_output =
-      std::make_unique<ParticleOutput>(prm.output_directory,
-                                       root &&
-                                         prm.particle_output_interval > 0);
-    particle_output->resume(state.step);
-    if (fictitious && prm.field_output_interval > 0)
+    // those steps are computed again. Rank 0 rewrites the files; a problem
+    // there (a damaged CSV file) stops every rank.
+    std::string problem;
+    try
       {
-        field_output = std::make_unique<FieldOutput<dim>>(prm.output_directory);
-        field_output->resume(state.step, root);
+        particles_csv =
+          std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
+                                      particle_columns,
+                                      root,
+                                      state.step);
+        statistics_csv =
+          std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
+                                      statistics_columns,
+                                      root,
+                                      state.step);
+        particle_output =
+          std::make_unique<ParticleOutput>(prm.output_directory,
+                                           root &&
+                                             prm.particle_output_interval > 0);
+        particle_output->resume(state.step);
+        if (fictitious && prm.field_output_interval > 0)
+          {
+            field_output =
+              std::make_unique<FieldOutput<dim>>(prm.output_directory);
+            field_output->resume(state.step, root);
+          }
       }
+    catch (const std::exception &e)
+      {
+        problem = e.what();
+      }
+    problem = Utilities::MPI::broadcast(comm, problem, 0);
+    if (!problem.empty())
+      throw RunError("resuming from " + resume->folder + ": " + problem);
     pcout << "fidus: resumed from " << resume->folder << " at step "
           << state.step << ", t = " << state.time << ", on "
           << Utilities::MPI::n_mpi_processes(comm)
@@ -736,7 +760,14 @@ namespace Fidus
                       state.step % prm.checkpoint_interval == 0) ||
                      (checkpoints_on && finished());
     if (due)
-      write_checkpoint();
+      {
+        write_checkpoint();
+        // A signal that came while the checkpoint was written stops the run
+        // now: this step is saved, and another step might not fit in the
+        // grace period a batch system gives.
+        if (global[0] == 0)
+          global[0] = Utilities::MPI::max(StopRequest::signal_received(), comm);
+      }
     if (global[0] == 0)
       return false;
 
@@ -758,18 +789,30 @@ namespace Fidus
   void
   Simulation<dim>::write_checkpoint()
   {
-    TimerOutput::Scope scope(*timer, "checkpoint");
-    Timer              clock;
-    const std::string  temporary =
+    Timer             clock;
+    const std::string temporary =
       Checkpoint::temporary_folder(prm.output_directory, state.step);
     const std::string final_folder =
       Checkpoint::folder(prm.output_directory, state.step);
+    // Rank 0 makes the folder; a failure (disk full, permissions) stops
+    // every rank, not rank 0 alone.
+    std::string error;
     if (root)
-      {
-        std::filesystem::remove_all(temporary);
-        std::filesystem::create_directories(temporary);
-      }
-    MPI_Barrier(comm);
+      try
+        {
+          std::filesystem::remove_all(temporary);
+          std::filesystem::create_directories(temporary);
+        }
+      catch (const std::exception &e)
+        {
+          error = e.what();
+        }
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    if (!error.empty())
+      throw RunError("writing the checkpoint of step " +
+                     std::to_string(state.step) + " failed: " + error);
+
+    TimerOutput::Scope scope(*timer, "checkpoint");
     if (fictitious)
       {
         solver->prepare_for_checkpoint();
@@ -784,7 +827,6 @@ namespace Fidus
     saved.warnings            = warnings.get_tallies();
     saved.wall_seconds_before = elapsed_wall_seconds();
     unsigned long long bytes  = 0;
-    std::string        error;
     if (root)
       try
         {

@@ -57,9 +57,12 @@ namespace Fidus
     std::string
     finish() const;
 
-    /// FNV-1a 64-bit checksum of @p size bytes at @p data.
+    /// FNV-1a 64-bit checksum of @p size bytes at @p data; continue from
+    /// @p previous (the checksum of what came before) to checksum in chunks.
     static std::uint64_t
-    checksum(const char *data, std::size_t size);
+    checksum(const char   *data,
+             std::size_t   size,
+             std::uint64_t previous = 14695981039346656037ULL);
 
     /// Marker written at the very end of every archive.
     static constexpr std::uint64_t end_marker = 0x46494455534348ULL;

@@ -61,10 +61,12 @@ namespace Fidus
      * same dimension, particles, box, boundary condition, fluid model and
      * velocity degree, and the CSV files of the run there. Every problem
      * is an InputError that names the entry or file, the value found and
-     * what is allowed. Reads only.
+     * what is allowed. Reads only. With @p verify_files false only
+     * state.bin is read (not the mesh and CSV files): for the ranks other
+     * than the one that checked everything.
      */
     static ResumePoint
-    find_and_check(const Parameters &prm);
+    find_and_check(const Parameters &prm, bool verify_files = true);
 
     /// File name of the mesh inside a checkpoint folder (for
     /// Triangulation::save and load).
