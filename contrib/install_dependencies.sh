@@ -3,7 +3,7 @@
 # when it is all there already. Used by contrib/run.sh and contrib/test.sh.
 set -euo pipefail
 packages=(libdeal.ii-dev numdiff libeigen3-dev libboost-dev ccache
-          python3-matplotlib clang-format cmake g++ make openmpi-bin)
+          python3-matplotlib clang-format cmake g++ make openmpi-bin procps)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
