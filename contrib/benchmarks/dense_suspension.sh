@@ -27,19 +27,8 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 fidus="${FIDUS:-$top/build-release/fidus}"
 model="${1:-gluey}"; fluid="${2:-fictitious domain}"; strain="${3:-10}"
 n="${4:-100}"; phi="${5:-0.4}"; level="${6:-7}"
-if [ -n "${WORK:-}" ]; then
-  mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
-else
-  work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
-fi
-if [ -n "${RESUME:-}" ]; then
-  [ -f "$work/dense.prm" ] || { echo "RESUME=1 needs WORK=<dir> of an earlier run" >&2; exit 1; }
-  status=0
-  "$fidus" --resume "$work/dense.prm" || status=$?
-  "$top/contrib/benchmarks/summarize_run.sh" "$work/out"
-  if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
-  exit $status
-fi
+. "$top/contrib/benchmarks/long_run.sh"
+long_run_prepare dense.prm
 
 # Random sequential addition, minimum image in x, clear of the y walls.
 a=$(/usr/bin/python3 - "$n" "$phi" "$work/positions.txt" <<'PY'

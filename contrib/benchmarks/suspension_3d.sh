@@ -20,19 +20,8 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 fidus="${FIDUS:-$top/build-release/fidus}"
 model="${1:-gluey}"; strain="${2:-1}"; n="${3:-24}"; phi="${4:-0.25}"
 level="${5:-4}"; dt="${6:-0.1}"
-if [ -n "${WORK:-}" ]; then
-  mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
-else
-  work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
-fi
-if [ -n "${RESUME:-}" ]; then
-  [ -f "$work/suspension.prm" ] || { echo "RESUME=1 needs WORK=<dir> of an earlier run" >&2; exit 1; }
-  status=0
-  "$fidus" --resume "$work/suspension.prm" || status=$?
-  "$top/contrib/benchmarks/summarize_run.sh" "$work/out"
-  if [ -n "${KEEP:-}" ]; then mkdir -p "$KEEP" && cp -r "$work/out/." "$KEEP/"; fi
-  exit $status
-fi
+. "$top/contrib/benchmarks/long_run.sh"
+long_run_prepare suspension.prm
 
 # Random sequential addition, minimum image in x and z, clear of the y walls.
 a=$(/usr/bin/python3 - "$n" "$phi" "$work/positions.txt" <<'PY'

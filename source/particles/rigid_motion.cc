@@ -4,18 +4,19 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 #include <fidus/core/input_error.h>
-#include <fidus/mesh/canonical_cell_order.h>
 #include <fidus/particles/rigid_motion.h>
 
 namespace Fidus
 {
   template <int dim>
   std::vector<RigidMotion>
-  compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
-                        const TrilinosWrappers::MPI::BlockVector &solution,
-                        const SolidIndicator<dim>                &solid,
-                        const Quadrature<dim>                    &quadrature,
-                        const std::vector<bool> *excluded_cells)
+  compute_rigid_motions(
+    const DoFHandler<dim> &dof_handler,
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
+    const TrilinosWrappers::MPI::BlockVector                          &solution,
+    const SolidIndicator<dim>                                         &solid,
+    const Quadrature<dim>   &quadrature,
+    const std::vector<bool> *excluded_cells)
   {
     const unsigned int n = solid.n_particles();
     // Per particle: volume, int u (3), int r x u (3), J (9), int r (3);
@@ -30,9 +31,7 @@ namespace Fidus
     std::vector<Tensor<1, dim>>      u(quadrature.size());
     std::vector<unsigned int>        cands;
 
-    // In mesh order, so that the sums are the same on a mesh loaded from a
-    // checkpoint (canonical_cell_order).
-    for (const auto &cell : canonical_cell_order(dof_handler))
+    for (const auto &cell : cells)
       if (cell->is_locally_owned())
         {
           const bool held =
@@ -149,15 +148,19 @@ namespace Fidus
   }
 
   template std::vector<RigidMotion>
-  compute_rigid_motions(const DoFHandler<2> &,
-                        const TrilinosWrappers::MPI::BlockVector &,
-                        const SolidIndicator<2> &,
-                        const Quadrature<2> &,
-                        const std::vector<bool> *);
+  compute_rigid_motions(
+    const DoFHandler<2> &,
+    const std::vector<DoFHandler<2>::active_cell_iterator> &,
+    const TrilinosWrappers::MPI::BlockVector &,
+    const SolidIndicator<2> &,
+    const Quadrature<2> &,
+    const std::vector<bool> *);
   template std::vector<RigidMotion>
-  compute_rigid_motions(const DoFHandler<3> &,
-                        const TrilinosWrappers::MPI::BlockVector &,
-                        const SolidIndicator<3> &,
-                        const Quadrature<3> &,
-                        const std::vector<bool> *);
+  compute_rigid_motions(
+    const DoFHandler<3> &,
+    const std::vector<DoFHandler<3>::active_cell_iterator> &,
+    const TrilinosWrappers::MPI::BlockVector &,
+    const SolidIndicator<3> &,
+    const Quadrature<3> &,
+    const std::vector<bool> *);
 } // namespace Fidus

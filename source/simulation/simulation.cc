@@ -43,6 +43,33 @@ namespace Fidus
       return cs;
     }
 
+    /**
+     * Run @p work and make a failure there stop every rank: rank 0's
+     * message is shared and every rank throws it as a RunError headed by
+     * @p what. Work that only rank 0 does (files of the output directory)
+     * would otherwise fail on rank 0 alone and leave the other ranks
+     * waiting in their next collective call.
+     */
+    template <typename F>
+    void
+    failure_stops_every_rank(const MPI_Comm     comm,
+                             const std::string &what,
+                             F                &&work)
+    {
+      std::string error;
+      try
+        {
+          work();
+        }
+      catch (const std::exception &e)
+        {
+          error = e.what();
+        }
+      error = Utilities::MPI::broadcast(comm, error, 0);
+      if (!error.empty())
+        throw RunError(what + ": " + error);
+    }
+
     const std::vector<std::string> particle_columns   = {"step",
                                                          "time",
                                                          "id",
@@ -281,38 +308,29 @@ namespace Fidus
     // Rows and collection entries after the checkpoint's step are dropped:
     // those steps are computed again. Rank 0 rewrites the files; a problem
     // there (a damaged CSV file) stops every rank.
-    std::string problem;
-    try
-      {
-        particles_csv =
-          std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
-                                      particle_columns,
-                                      root,
-                                      state.step);
-        statistics_csv =
-          std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                      statistics_columns,
-                                      root,
-                                      state.step);
-        particle_output =
-          std::make_unique<ParticleOutput>(prm.output_directory,
-                                           root &&
-                                             prm.particle_output_interval > 0);
-        particle_output->resume(state.step);
-        if (fictitious && prm.field_output_interval > 0)
-          {
-            field_output =
-              std::make_unique<FieldOutput<dim>>(prm.output_directory);
-            field_output->resume(state.step, root);
-          }
-      }
-    catch (const std::exception &e)
-      {
-        problem = e.what();
-      }
-    problem = Utilities::MPI::broadcast(comm, problem, 0);
-    if (!problem.empty())
-      throw RunError("resuming from " + resume->folder + ": " + problem);
+    failure_stops_every_rank(comm, "resuming from " + resume->folder, [&]() {
+      particles_csv =
+        std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
+                                    particle_columns,
+                                    root,
+                                    state.step);
+      statistics_csv =
+        std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
+                                    statistics_columns,
+                                    root,
+                                    state.step);
+      particle_output =
+        std::make_unique<ParticleOutput>(prm.output_directory,
+                                         root &&
+                                           prm.particle_output_interval > 0);
+      particle_output->resume(state.step);
+      if (fictitious && prm.field_output_interval > 0)
+        {
+          field_output =
+            std::make_unique<FieldOutput<dim>>(prm.output_directory);
+          field_output->resume(state.step, root);
+        }
+    });
     pcout << "fidus: resumed from " << resume->folder << " at step "
           << state.step << ", t = " << state.time << ", on "
           << Utilities::MPI::n_mpi_processes(comm)
@@ -605,6 +623,7 @@ namespace Fidus
     TimerOutput::Scope             scope(*timer, "rigid motion");
     const std::vector<RigidMotion> motions =
       compute_rigid_motions(solver->get_dof_handler(),
+                            solver->get_cells(),
                             solver->get_solution(),
                             solid,
                             solver->get_quadrature(),
@@ -796,21 +815,15 @@ namespace Fidus
       Checkpoint::folder(prm.output_directory, state.step);
     // Rank 0 makes the folder; a failure (disk full, permissions) stops
     // every rank, not rank 0 alone.
-    std::string error;
-    if (root)
-      try
+    const std::string failed = "writing the checkpoint of step " +
+                               std::to_string(state.step) + " failed";
+    failure_stops_every_rank(comm, failed, [&]() {
+      if (root)
         {
           std::filesystem::remove_all(temporary);
           std::filesystem::create_directories(temporary);
         }
-      catch (const std::exception &e)
-        {
-          error = e.what();
-        }
-    error = Utilities::MPI::broadcast(comm, error, 0);
-    if (!error.empty())
-      throw RunError("writing the checkpoint of step " +
-                     std::to_string(state.step) + " failed: " + error);
+    });
 
     TimerOutput::Scope scope(*timer, "checkpoint");
     if (fictitious)
@@ -827,23 +840,14 @@ namespace Fidus
     saved.warnings            = warnings.get_tallies();
     saved.wall_seconds_before = elapsed_wall_seconds();
     unsigned long long bytes  = 0;
-    if (root)
-      try
-        {
-          bytes = Checkpoint::commit(temporary,
-                                     final_folder,
-                                     prm,
-                                     saved,
-                                     Utilities::MPI::n_mpi_processes(comm));
-        }
-      catch (const std::exception &e)
-        {
-          error = e.what();
-        }
-    error = Utilities::MPI::broadcast(comm, error, 0);
-    if (!error.empty())
-      throw RunError("writing the checkpoint of step " +
-                     std::to_string(state.step) + " failed: " + error);
+    failure_stops_every_rank(comm, failed, [&]() {
+      if (root)
+        bytes = Checkpoint::commit(temporary,
+                                   final_folder,
+                                   prm,
+                                   saved,
+                                   Utilities::MPI::n_mpi_processes(comm));
+    });
     bytes                = Utilities::MPI::broadcast(comm, bytes, 0);
     last_checkpoint_wall = wall_clock.wall_time();
     pcout << "checkpoint " << final_folder << ": " << bytes << " bytes, "

@@ -11,35 +11,6 @@
 
 using namespace Fidus::Contact;
 
-namespace
-{
-  /// Run @p f, expect a ContactError whose message contains all @p parts.
-  template <typename F>
-  void
-  expect_error(const std::string              &what,
-               F                               f,
-               const std::vector<std::string> &parts)
-  {
-    std::string message;
-    bool        thrown = false;
-    try
-      {
-        f();
-      }
-    catch (const ContactError &e)
-      {
-        thrown  = true;
-        message = e.what();
-      }
-    bool ok = thrown;
-    for (const auto &p : parts)
-      ok = ok && message.find(p) != std::string::npos;
-    TestTools::check(what, ok);
-    if (!ok)
-      std::cout << "  message was: '" << message << "'" << std::endl;
-  }
-} // namespace
-
 int
 main()
 {
@@ -62,58 +33,65 @@ main()
 
       auto nan_u  = u;
       nan_u[3][1] = std::numeric_limits<double>::quiet_NaN();
-      expect_error(head + ": NaN velocity names the particle",
-                   [&] { projector.project(x, a, nan_u, 0.01, out); },
-                   {"particle 3", "not finite"});
+      TestTools::expect_error(head + ": NaN velocity names the particle",
+                              [&] {
+                                projector.project(x, a, nan_u, 0.01, out);
+                              },
+                              {"particle 3", "not finite"});
       auto inf_u  = u;
       inf_u[2][0] = std::numeric_limits<double>::infinity();
-      expect_error(head + ": infinite velocity names the particle",
-                   [&] { projector.project(x, a, inf_u, 0.01, out); },
-                   {"particle 2", "not finite"});
+      TestTools::expect_error(head + ": infinite velocity names the particle",
+                              [&] {
+                                projector.project(x, a, inf_u, 0.01, out);
+                              },
+                              {"particle 2", "not finite"});
       for (const double dt :
            {0., -0.01, std::numeric_limits<double>::quiet_NaN()})
-        expect_error(head + ": dt = " + std::to_string(dt) + " rejected",
-                     [&] { projector.project(x, a, u, dt, out); },
-                     {"time step dt", "positive"});
-      expect_error(
+        TestTools::expect_error(head + ": dt = " + std::to_string(dt) +
+                                  " rejected",
+                                [&] { projector.project(x, a, u, dt, out); },
+                                {"time step dt", "positive"});
+      TestTools::expect_error(
         head + ": size mismatch",
         [&] {
           projector.project(x, std::vector<double>(3, 0.1), u, 0.01, out);
         },
         {"size mismatch", "3 radii"});
-      expect_error(head + ": radius <= 0",
-                   [&] {
-                     auto b = a;
-                     b[1]   = 0.;
-                     projector.project(x, b, u, 0.01, out);
-                   },
-                   {"radius of particle 1"});
+      TestTools::expect_error(head + ": radius <= 0",
+                              [&] {
+                                auto b = a;
+                                b[1]   = 0.;
+                                projector.project(x, b, u, 0.01, out);
+                              },
+                              {"radius of particle 1"});
 
       if (model != Model::none)
         {
           // Particles 1 and 3 overlap by 0.01.
           auto y  = x;
           y[3][1] = 0.19;
-          expect_error(head + ": initial overlap names the pair and overlap",
-                       [&] { projector.project(y, a, u, 0.01, out); },
-                       {"particles 1 and 3", "overlap by 0.01"});
+          TestTools::expect_error(
+            head + ": initial overlap names the pair and overlap",
+            [&] { projector.project(y, a, u, 0.01, out); },
+            {"particles 1 and 3", "overlap by 0.01"});
           ContactProjector with_wall(settings);
           with_wall.set_walls({Wall{1, -0.095, 1, Vec3{{0., 0., 0.}}}});
-          expect_error(head + ": overlap with a wall names particle and wall",
-                       [&] { with_wall.project(x, a, u, 0.01, out); },
-                       {"particle 0 and wall 0", "overlap by 0.005"});
+          TestTools::expect_error(
+            head + ": overlap with a wall names particle and wall",
+            [&] { with_wall.project(x, a, u, 0.01, out); },
+            {"particle 0 and wall 0", "overlap by 0.005"});
         }
-      expect_error(
+      TestTools::expect_error(
         head + ": wall with inflow is not a wall",
         [&] {
           projector.set_walls({Wall{1, -1., 1, Vec3{{0., 0.5, 0.}}}});
         },
         {"wall 0", "normal component"});
-      expect_error(head + ": wall axis outside the dimension",
-                   [&] {
-                     projector.set_walls({Wall{2, 0., 1, Vec3{}}});
-                   },
-                   {"wall 0", "axis 2"});
+      TestTools::expect_error(head + ": wall axis outside the dimension",
+                              [&] {
+                                projector.set_walls({Wall{2, 0., 1, Vec3{}}});
+                              },
+                              {"wall 0", "axis 2"});
 
       // A valid call still works after all this.
       bool ok = true;
@@ -129,12 +107,12 @@ main()
       TestTools::check(head + ": valid input accepted afterwards", ok);
     }
 
-  expect_error("dimension 4 rejected",
-               [] {
-                 Settings s;
-                 s.dimension = 4;
-                 ContactProjector p(s);
-               },
-               {"dimension"});
+  TestTools::expect_error("dimension 4 rejected",
+                          [] {
+                            Settings s;
+                            s.dimension = 4;
+                            ContactProjector p(s);
+                          },
+                          {"dimension"});
   return TestTools::failures() == 0 ? 0 : 1;
 }

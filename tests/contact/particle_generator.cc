@@ -111,32 +111,6 @@ namespace
                      std::abs(p.min_gap - gap) <= 1e-9 * a_min);
   }
 
-  /// Run @p f, expect a ContactError whose message contains all @p parts.
-  template <typename F>
-  void
-  expect_error(const std::string              &what,
-               F                               f,
-               const std::vector<std::string> &parts)
-  {
-    std::string message;
-    bool        thrown = false;
-    try
-      {
-        f();
-      }
-    catch (const ContactError &e)
-      {
-        thrown  = true;
-        message = e.what();
-      }
-    bool ok = thrown;
-    for (const auto &p : parts)
-      ok = ok && message.find(p) != std::string::npos;
-    TestTools::check(what, ok);
-    if (!ok)
-      std::cout << "  message was: '" << message << "'" << std::endl;
-  }
-
   /// 2D bidisperse discs, radii 1 and 1.4 by equal numbers, x periodic,
   /// walls in y: about 990 discs at area fraction 0.6.
   GeneratorSettings
@@ -280,93 +254,102 @@ main()
       ParticleGenerator::generate(s);
     };
   };
-  expect_error("2D area fraction 0.9069 rejected",
-               generate_with([](auto &s) { s.target_fraction = 0.9069; }),
-               {"area fraction", "0.9069"});
-  expect_error("2D area fraction 0.95 rejected",
-               generate_with([](auto &s) { s.target_fraction = 0.95; }),
-               {"area fraction", "0.95"});
-  expect_error("3D volume fraction 0.7405 rejected",
-               generate_with([](auto &s) {
-                 s                 = settings_3d();
-                 s.target_fraction = 0.7405;
-               }),
-               {"volume fraction", "0.7405"});
-  expect_error("too many particles for the area rejected",
-               generate_with([](auto &s) {
-                 s.target_fraction = 0.;
-                 s.n_particles     = 100000;
-               }),
-               {"100000 particles", "area fraction"});
-  expect_error("weights not summing to 1 rejected",
-               generate_with([](auto &s) {
-                 s.radii_weights = {0.5, 0.6};
-               }),
-               {"weights sum to 1.1"});
-  expect_error("weights of another length rejected",
-               generate_with([](auto &s) { s.radii_weights = {1.}; }),
-               {"1 weights for 2 radii"});
-  expect_error("empty radii rejected",
-               generate_with([](auto &s) {
-                 s.radii_values.clear();
-                 s.radii_weights.clear();
-               }),
-               {"no radius"});
-  expect_error("radius 0 rejected",
-               generate_with([](auto &s) {
-                 s.radii_values = {1., 0.};
-               }),
-               {"radius 0"});
-  expect_error("region with lower = upper rejected",
-               generate_with([](auto &s) { s.upper[1] = s.lower[1]; }),
-               {"region along y"});
-  expect_error("region with lower > upper rejected",
-               generate_with([](auto &s) { std::swap(s.lower, s.upper); }),
-               {"region along x"});
-  expect_error("both a count and a fraction rejected",
-               generate_with([](auto &s) { s.n_particles = 10; }),
-               {"not both"});
-  expect_error("neither a count nor a fraction rejected",
-               generate_with([](auto &s) { s.target_fraction = 0.; }),
-               {"not neither"});
-  expect_error("negative minimum separation rejected",
-               generate_with([](auto &s) { s.min_separation = -0.1; }),
-               {"minimum separation"});
-  expect_error("minimum separation too large for the fraction rejected",
-               generate_with([](auto &s) {
-                 s.min_separation  = 2.;
-                 s.target_fraction = 0.3;
-               }),
-               {"minimum separation 2", "area fraction"});
-  expect_error("region narrower than a particle rejected",
-               generate_with([](auto &s) {
-                 s.upper[1]        = s.lower[1] + 2.5;
-                 s.target_fraction = 0.1;
-               }),
-               {"too narrow"});
-  expect_error("period too short for the minimum image rejected",
-               generate_with([](auto &s) {
-                 s.upper[0]        = s.lower[0] + 5.;
-                 s.target_fraction = 0.1;
-               }),
-               {"(periodic)", "too narrow"});
-  expect_error("periodic z in 2D rejected",
-               generate_with([](auto &s) { s.periodic[2] = true; }),
-               {"z is periodic"});
-  expect_error("dimension 4 rejected",
-               generate_with([](auto &s) { s.dimension = 4; }),
-               {"dimension"});
+  TestTools::expect_error("2D area fraction 0.9069 rejected",
+                          generate_with(
+                            [](auto &s) { s.target_fraction = 0.9069; }),
+                          {"area fraction", "0.9069"});
+  TestTools::expect_error("2D area fraction 0.95 rejected",
+                          generate_with(
+                            [](auto &s) { s.target_fraction = 0.95; }),
+                          {"area fraction", "0.95"});
+  TestTools::expect_error("3D volume fraction 0.7405 rejected",
+                          generate_with([](auto &s) {
+                            s                 = settings_3d();
+                            s.target_fraction = 0.7405;
+                          }),
+                          {"volume fraction", "0.7405"});
+  TestTools::expect_error("too many particles for the area rejected",
+                          generate_with([](auto &s) {
+                            s.target_fraction = 0.;
+                            s.n_particles     = 100000;
+                          }),
+                          {"100000 particles", "area fraction"});
+  TestTools::expect_error("weights not summing to 1 rejected",
+                          generate_with([](auto &s) {
+                            s.radii_weights = {0.5, 0.6};
+                          }),
+                          {"weights sum to 1.1"});
+  TestTools::expect_error("weights of another length rejected",
+                          generate_with(
+                            [](auto &s) { s.radii_weights = {1.}; }),
+                          {"1 weights for 2 radii"});
+  TestTools::expect_error("empty radii rejected",
+                          generate_with([](auto &s) {
+                            s.radii_values.clear();
+                            s.radii_weights.clear();
+                          }),
+                          {"no radius"});
+  TestTools::expect_error("radius 0 rejected",
+                          generate_with([](auto &s) {
+                            s.radii_values = {1., 0.};
+                          }),
+                          {"radius 0"});
+  TestTools::expect_error("region with lower = upper rejected",
+                          generate_with(
+                            [](auto &s) { s.upper[1] = s.lower[1]; }),
+                          {"region along y"});
+  TestTools::expect_error("region with lower > upper rejected",
+                          generate_with(
+                            [](auto &s) { std::swap(s.lower, s.upper); }),
+                          {"region along x"});
+  TestTools::expect_error("both a count and a fraction rejected",
+                          generate_with([](auto &s) { s.n_particles = 10; }),
+                          {"not both"});
+  TestTools::expect_error("neither a count nor a fraction rejected",
+                          generate_with(
+                            [](auto &s) { s.target_fraction = 0.; }),
+                          {"not neither"});
+  TestTools::expect_error("negative minimum separation rejected",
+                          generate_with(
+                            [](auto &s) { s.min_separation = -0.1; }),
+                          {"minimum separation"});
+  TestTools::expect_error(
+    "minimum separation too large for the fraction rejected",
+    generate_with([](auto &s) {
+      s.min_separation  = 2.;
+      s.target_fraction = 0.3;
+    }),
+    {"minimum separation 2", "area fraction"});
+  TestTools::expect_error("region narrower than a particle rejected",
+                          generate_with([](auto &s) {
+                            s.upper[1]        = s.lower[1] + 2.5;
+                            s.target_fraction = 0.1;
+                          }),
+                          {"too narrow"});
+  TestTools::expect_error("period too short for the minimum image rejected",
+                          generate_with([](auto &s) {
+                            s.upper[0]        = s.lower[0] + 5.;
+                            s.target_fraction = 0.1;
+                          }),
+                          {"(periodic)", "too narrow"});
+  TestTools::expect_error("periodic z in 2D rejected",
+                          generate_with([](auto &s) { s.periodic[2] = true; }),
+                          {"z is periodic"});
+  TestTools::expect_error("dimension 4 rejected",
+                          generate_with([](auto &s) { s.dimension = 4; }),
+                          {"dimension"});
 
   // Above random close packing (bidisperse discs jam near 0.84): the growth
   // stalls, and the message names the target and the fraction reached.
-  expect_error("2D area fraction 0.88 (jammed) throws naming target and "
-               "fraction reached",
-               generate_with([](auto &s) {
-                 s.upper           = {{-20., 30., 0.}};
-                 s.target_fraction = 0.88;
-               }),
-               {"could not reach the area fraction 0.88",
-                "without overlap, the centres reached hold only"});
+  TestTools::expect_error(
+    "2D area fraction 0.88 (jammed) throws naming target and "
+    "fraction reached",
+    generate_with([](auto &s) {
+      s.upper           = {{-20., 30., 0.}};
+      s.target_fraction = 0.88;
+    }),
+    {"could not reach the area fraction 0.88",
+     "without overlap, the centres reached hold only"});
 
   return TestTools::failures() == 0 ? 0 : 1;
 }

@@ -92,32 +92,6 @@ namespace
     return g;
   }
 
-  /// Run @p f, expect a ContactError whose message contains all @p parts.
-  template <typename F>
-  void
-  expect_error(const std::string              &what,
-               F                               f,
-               const std::vector<std::string> &parts)
-  {
-    std::string message;
-    bool        thrown = false;
-    try
-      {
-        f();
-      }
-    catch (const ContactError &e)
-      {
-        thrown  = true;
-        message = e.what();
-      }
-    bool ok = thrown;
-    for (const auto &p : parts)
-      ok = ok && message.find(p) != std::string::npos;
-    TestTools::check(what, ok);
-    if (!ok)
-      std::cout << "  message was: '" << message << "'" << std::endl;
-  }
-
   std::string
   model_name(const Model m)
   {
@@ -448,7 +422,7 @@ namespace
     std::vector<Vec3>         out;
 
     // 2 (2 a_max + d_a) = 2 (0.2 + 0.003) = 0.406 with d_a = 3 dt |u|.
-    expect_error(
+    TestTools::expect_error(
       "period 0.4 < 2 (2 a_max + d_a) rejected by project()",
       [&] {
         ContactProjector p(settings);
@@ -459,17 +433,17 @@ namespace
        "larger than 2 (2 a_max + d_a) = 0.406",
        "a_max = 0.1",
        "ambiguous"});
-    expect_error("period too small for the alert distance rejected",
-                 [&] {
-                   Settings s       = settings;
-                   s.alert_distance = 0.1;
-                   ContactProjector p(s);
-                   p.set_periodicity({{0.5, 0., 0.}});
-                   p.project(x, a, u, 0.01, out);
-                 },
-                 {"period 0.5",
-                  "larger than 2 (2 a_max + d_a) = 0.6",
-                  "d_a = 0.1"});
+    TestTools::expect_error("period too small for the alert distance rejected",
+                            [&] {
+                              Settings s       = settings;
+                              s.alert_distance = 0.1;
+                              ContactProjector p(s);
+                              p.set_periodicity({{0.5, 0., 0.}});
+                              p.project(x, a, u, 0.01, out);
+                            },
+                            {"period 0.5",
+                             "larger than 2 (2 a_max + d_a) = 0.6",
+                             "d_a = 0.1"});
     // The same configuration with a large enough period works.
     bool ok = true;
     try
@@ -485,7 +459,7 @@ namespace
     TestTools::check("period 0.41 > 0.406 accepted", ok);
     // Discs at x = 0.05 and 0.95 in a period of 1 are 0.1 apart through the
     // face: overlap 0.1, and the message says the gap was measured across it.
-    expect_error(
+    TestTools::expect_error(
       "overlap across the periodic face names the nearest-image separation",
       [&] {
         ContactProjector p(settings);
@@ -499,20 +473,21 @@ namespace
       {"particles 0 and 1",
        "overlap by 0.1",
        "across a periodic face (nearest-image separation (-0.1"});
-    expect_error(
+    TestTools::expect_error(
       "minimum_gap(): period below 4 a_max rejected",
       [&] {
         ContactProjector::minimum_gap(x, a, {}, 2, 1., {{0.4, 0., 0.}});
       },
       {"minimum_gap", "period 0.4", "too small", "= 0.4"});
-    expect_error("periodic direction with a wall (walls first)",
-                 [&] {
-                   ContactProjector p(settings);
-                   p.set_walls({Wall{0, 0., 1, Vec3{}}});
-                   p.set_periodicity({{1., 0., 0.}});
-                 },
-                 {"direction x (direction 0) cannot be periodic", "wall 0"});
-    expect_error(
+    TestTools::expect_error("periodic direction with a wall (walls first)",
+                            [&] {
+                              ContactProjector p(settings);
+                              p.set_walls({Wall{0, 0., 1, Vec3{}}});
+                              p.set_periodicity({{1., 0., 0.}});
+                            },
+                            {"direction x (direction 0) cannot be periodic",
+                             "wall 0"});
+    TestTools::expect_error(
       "periodic direction with a wall (periods first)",
       [&] {
         ContactProjector p(settings);
@@ -520,24 +495,26 @@ namespace
         p.set_walls({Wall{1, 0., 1, Vec3{}}, Wall{0, 1., -1, Vec3{}}});
       },
       {"wall 1", "axis 0 is a periodic direction"});
-    expect_error("negative period",
-                 [&] {
-                   ContactProjector p(settings);
-                   p.set_periodicity({{-1., 0., 0.}});
-                 },
-                 {"period of direction x (direction 0) is -1", "must be > 0"});
-    expect_error("NaN period",
-                 [&] {
-                   ContactProjector p(settings);
-                   p.set_periodicity({{0., std::nan(""), 0.}});
-                 },
-                 {"period of direction y (direction 1)"});
-    expect_error("period in z in 2D",
-                 [&] {
-                   ContactProjector p(settings);
-                   p.set_periodicity({{1., 0., 1.}});
-                 },
-                 {"direction z (direction 2)", "does not exist in 2D"});
+    TestTools::expect_error("negative period",
+                            [&] {
+                              ContactProjector p(settings);
+                              p.set_periodicity({{-1., 0., 0.}});
+                            },
+                            {"period of direction x (direction 0) is -1",
+                             "must be > 0"});
+    TestTools::expect_error("NaN period",
+                            [&] {
+                              ContactProjector p(settings);
+                              p.set_periodicity({{0., std::nan(""), 0.}});
+                            },
+                            {"period of direction y (direction 1)"});
+    TestTools::expect_error("period in z in 2D",
+                            [&] {
+                              ContactProjector p(settings);
+                              p.set_periodicity({{1., 0., 1.}});
+                            },
+                            {"direction z (direction 2)",
+                             "does not exist in 2D"});
   }
 
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fidus/contact/contact_error.h>
 #include <fidus/contact/contact_types.h>
 #include <iostream>
 #include <string>
@@ -122,6 +123,31 @@ namespace TestTools
         x.push_back(p);
         a.push_back(r);
       }
+  }
+  /// Run @p f, expect a ContactError whose message contains all @p parts.
+  template <typename F>
+  void
+  expect_error(const std::string              &what,
+               F                               f,
+               const std::vector<std::string> &parts)
+  {
+    std::string message;
+    bool        thrown = false;
+    try
+      {
+        f();
+      }
+    catch (const Fidus::Contact::ContactError &e)
+      {
+        thrown  = true;
+        message = e.what();
+      }
+    bool ok = thrown;
+    for (const auto &p : parts)
+      ok = ok && message.find(p) != std::string::npos;
+    check(what, ok);
+    if (!ok)
+      std::cout << "  message was: '" << message << "'" << std::endl;
   }
 } // namespace TestTools
 

@@ -176,6 +176,14 @@ namespace Fidus
       return dof_handler.n_dofs();
     }
 
+    /// Locally owned and ghost cells in mesh order (canonical_cell_order),
+    /// for sums over cells that must not depend on the refinement history.
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
+    get_cells() const
+    {
+      return cells;
+    }
+
     /// Per active cell (active_cell_index): whether the last solve treated
     /// its solid part as fluid (a shared cell).
     const std::vector<bool> &

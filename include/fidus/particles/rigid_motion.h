@@ -38,11 +38,13 @@ namespace Fidus
    */
   template <int dim>
   std::vector<RigidMotion>
-  compute_rigid_motions(const DoFHandler<dim>                    &dof_handler,
-                        const TrilinosWrappers::MPI::BlockVector &solution,
-                        const SolidIndicator<dim>                &solid,
-                        const Quadrature<dim>                    &quadrature,
-                        const std::vector<bool> *excluded_cells = nullptr);
+  compute_rigid_motions(
+    const DoFHandler<dim> &dof_handler,
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &cells,
+    const TrilinosWrappers::MPI::BlockVector                          &solution,
+    const SolidIndicator<dim>                                         &solid,
+    const Quadrature<dim>   &quadrature,
+    const std::vector<bool> *excluded_cells = nullptr);
 } // namespace Fidus
 
 #endif

@@ -1,0 +1,397 @@
+// The entries of a fidus parameter file: names, defaults, patterns and the
+// documentation that --print-parameters shows. Reading them back and
+// checking the scene is in parameters.cc.
+
+#include <deal.II/base/parameter_handler.h>
+#include <fidus/core/parameters.h>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  void
+  Parameters::declare(ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Space dimension of the scene, chosen at run time. "
+                      "Allowed: 2 or 3.");
+    prm.declare_entry("Output directory",
+                      "output",
+                      Patterns::FileName(Patterns::FileName::output),
+                      "Folder for all output files (created if missing). "
+                      "Relative paths are relative to the working directory.");
+
+    prm.enter_subsection("Domain");
+    {
+      prm.declare_entry("Lower left",
+                        "0, 0",
+                        Patterns::Anything(),
+                        "Lower-left corner of the box [length], one "
+                        "coordinate per dimension, comma separated.");
+      prm.declare_entry("Upper right",
+                        "1, 1",
+                        Patterns::Anything(),
+                        "Upper-right corner of the box [length], one "
+                        "coordinate per dimension; each larger than the "
+                        "lower-left one.");
+      prm.declare_entry(
+        "Boundary condition",
+        "linear shear",
+        Patterns::Selection(
+          "linear shear|sliding walls|cavity|exact rigid inclusion"),
+        "Velocity imposed on the box. 'linear shear': u = shear rate * "
+        "(y - y_mid) e_x on every face. 'sliding walls': the faces y = "
+        "y_min and y = y_max move at -/+ shear rate * H/2 e_x, the other "
+        "directions are periodic. 'cavity': the same moving walls, the "
+        "other faces at rest. 'exact rigid inclusion': verification scene "
+        "with one particle and the exact solution of a torque-free rigid "
+        "particle in linear shear imposed on the box; error norms are "
+        "reported.");
+      prm.declare_entry("Shear rate",
+                        "1",
+                        Patterns::Anything(),
+                        "Shear rate [1/time] as a function of the time t "
+                        "(muparser syntax), e.g. 't < 10 ? 1 : -1' for a "
+                        "reversal at t = 10.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Fluid");
+    {
+      prm.declare_entry(
+        "Model",
+        "fictitious domain",
+        Patterns::Selection("fictitious domain|undisturbed shear"),
+        "'fictitious domain': Stokes with penalised viscosity and a rigidity "
+        "multiplier on an adaptive mesh. 'undisturbed shear': particles move "
+        "with the undisturbed shear flow at their centre (no mesh, no "
+        "hydrodynamic interaction).");
+      prm.declare_entry("Viscosity",
+                        "1",
+                        Patterns::Double(0.),
+                        "Fluid viscosity eta_f [pressure * time], > 0.");
+      prm.declare_entry("Penalty factor",
+                        "1000",
+                        Patterns::Double(1.),
+                        "r: the solid viscosity is r * eta_f; must be > 1. "
+                        "It is also the augmentation of the Uzawa loop.");
+      prm.declare_entry("Velocity degree",
+                        "2",
+                        Patterns::Integer(2, 4),
+                        "Polynomial degree of the velocity (Taylor-Hood "
+                        "Q(k)/Q(k-1)), 2 to 4.");
+      prm.declare_entry("Rigidity tolerance",
+                        "1e-3",
+                        Patterns::Double(0., 1.),
+                        "Uzawa stop: ||e(u)||_{L2(solid)} / ||e(u)||_{L2(box)} "
+                        "below this value, in (0, 1). The default is the "
+                        "work-precision optimum (doc/performance.md): with "
+                        "the default penalty factor the velocity error is "
+                        "already at the discretisation error there.");
+      prm.declare_entry("Maximum Uzawa iterations",
+                        "50",
+                        Patterns::Integer(1, 10000),
+                        "Uzawa iterations per solve before a warning, >= 1.");
+      prm.declare_entry(
+        "Reuse multiplier",
+        "true",
+        Patterns::Bool(),
+        "Start the Uzawa loop of a time step from the previous step's "
+        "multiplier when the mesh has not changed (a warm start); otherwise "
+        "from zero.");
+      prm.declare_entry(
+        "Shared cells",
+        "rigid",
+        Patterns::Selection("rigid|fluid"),
+        "Cells whose solid part lies within half a cell diameter of another "
+        "particle (two particles closer than a cell, where one velocity "
+        "polynomial would have to be two rigid motions). 'rigid' (the "
+        "seed's model): rigid wherever there is solid; a close pair moves "
+        "as one rigid doublet, which stands in for the lubrication the mesh "
+        "cannot resolve, and in a dense suspension the Uzawa loop stalls. "
+        "'fluid': their solid part is treated as fluid (no penalty, no "
+        "rigidity multiplier), each particle keeps its rigid motion from the "
+        "rest of its solid, the Uzawa loop converges, and the residual there "
+        "is reported apart (statistics.csv: shared_cells, shared_residual); "
+        "without a lubrication correction close pairs then approach and "
+        "separate far too fast (measured in doc/fluid.md).");
+      prm.enter_subsection("Linear solver");
+      {
+        prm.declare_entry("Tolerance",
+                          "1e-6",
+                          Patterns::Double(0., 1.),
+                          "FGMRES stop: residual below this value times the "
+                          "norm of the right-hand side, in (0, 1).");
+        prm.declare_entry("Maximum cheap iterations",
+                          "1000",
+                          Patterns::Integer(0, 100000),
+                          "FGMRES iterations with the cheap preconditioner "
+                          "(one AMG V-cycle per block) before switching to "
+                          "inner solves.");
+        prm.declare_entry("Maximum iterations",
+                          "1000",
+                          Patterns::Integer(1, 100000),
+                          "FGMRES iterations with the expensive "
+                          "preconditioner before failing, >= 1.");
+        prm.declare_entry(
+          "AMG aggregation threshold",
+          "0",
+          Patterns::Double(0., 1.),
+          "ML aggregation threshold of the velocity AMG, in [0, 1]. 0 keeps "
+          "every connection, also the weak fluid-solid ones across the "
+          "viscosity jump (measured fastest, doc/fluid.md).");
+        prm.declare_entry("AMG smoother sweeps",
+                          "4",
+                          Patterns::Integer(1, 10),
+                          "Smoother sweeps of the velocity AMG.");
+        prm.declare_entry(
+          "AMG smoother type",
+          "Chebyshev",
+          Patterns::Selection("Chebyshev|symmetric Gauss-Seidel|Jacobi|ILU"),
+          "Smoother of the velocity AMG (ML). Chebyshev needs no "
+          "communication between the sweeps and does not depend on the "
+          "number of MPI ranks. ILU (use 1 sweep) factorises each rank's "
+          "block: on 1-2 ranks it needs up to 23 % fewer iterations and is up "
+          "to 40 % faster in 3D for one particle, but 2.3 times slower "
+          "for 24 spheres at volume fraction 0.25; being block Jacobi "
+          "across ranks, it is expected to weaken on many ranks (not "
+          "measured; doc/fluid.md).");
+      }
+      prm.leave_subsection();
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Particles");
+    {
+      prm.declare_entry("Radius",
+                        "0.05",
+                        Patterns::Anything(),
+                        "Particle radius [length], > 0: one value for all "
+                        "particles or one per particle, comma separated.");
+      prm.declare_entry("Positions",
+                        "",
+                        Patterns::Anything(),
+                        "Centres [length], particles separated by ';', "
+                        "coordinates by ',', e.g. '0.451, 0.51; 0.549, 0.49'.");
+      prm.declare_entry("Positions file",
+                        "",
+                        Patterns::Anything(),
+                        "Alternative to 'Positions': a text file with one "
+                        "particle per line, 'x y [z] [radius]' ('#' starts a "
+                        "comment). Relative to the parameter file.");
+      prm.enter_subsection("Generator");
+      {
+        prm.declare_entry(
+          "Number of particles",
+          "0",
+          Patterns::Integer(0),
+          "Particles to place at random without overlap, instead of "
+          "'Positions' (which must then be empty); 0: use 'Fraction'. At "
+          "most one of the two may be > 0; both 0: no generator.");
+        prm.declare_entry(
+          "Fraction",
+          "0",
+          Patterns::Double(0., 1.),
+          "Area fraction (2D) or volume fraction (3D) of the region to fill; "
+          "the number of particles follows. Below 0.9069 (2D) and 0.7405 "
+          "(3D), the densest packings; random packings jam near 0.84 "
+          "(bidisperse discs) and 0.64 (spheres). Reached by growing the "
+          "particles from a tenth of the fraction while pushing overlapping "
+          "pairs apart; 0.6 (2D) and 0.5 (3D) take about a second for 1e5 "
+          "particles (contrib/benchmarks/particle_generator.sh).");
+        prm.declare_entry(
+          "Radii",
+          "",
+          Patterns::Anything(),
+          "Radii [length], comma separated: one value (monodisperse), two "
+          "(bidisperse, e.g. 'a, 1.4 a' in 2D, where equal discs "
+          "crystallise) or more (polydisperse). Empty: 'Particles/Radius'.");
+        prm.declare_entry("Radius weights",
+                          "",
+                          Patterns::Anything(),
+                          "Number fractions of 'Radii', one per radius, "
+                          "summing to 1; empty: equal fractions.");
+        prm.declare_entry("Region lower left",
+                          "",
+                          Patterns::Anything(),
+                          "Lower corner of the region to fill [length], one "
+                          "coordinate per dimension; empty: the box.");
+        prm.declare_entry(
+          "Region upper right",
+          "",
+          Patterns::Anything(),
+          "Upper corner of the region to fill [length]; empty: the box. "
+          "Along a periodic axis of 'sliding walls' the region is periodic "
+          "when it spans the box.");
+        prm.declare_entry(
+          "Minimum separation",
+          "0",
+          Patterns::Double(0.),
+          "Smallest gap between particles, and between a particle and a "
+          "non-periodic face of the region, relative to the smallest "
+          "radius, >= 0.");
+        prm.declare_entry("Seed",
+                          "1",
+                          Patterns::Integer(0),
+                          "Seed of the random numbers: the same parameters "
+                          "and seed give the same particles.");
+        prm.declare_entry("Maximum iterations",
+                          "20000",
+                          Patterns::Integer(1),
+                          "Cap on the relaxation sweeps of the generator; a "
+                          "jammed growth stops earlier with an error naming "
+                          "the fraction reached.");
+      }
+      prm.leave_subsection();
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Contact");
+    {
+      prm.declare_entry("Model",
+                        "gluey",
+                        Patterns::Selection("none|inelastic|gluey"),
+                        "Projection of the particle velocities: 'none' (no "
+                        "correction, overlaps possible), 'inelastic' (no "
+                        "overlap), 'gluey' (no overlap, glued pairs keep "
+                        "their gap until the compressive impulse is paid "
+                        "back).");
+      prm.declare_entry("Walls",
+                        "true",
+                        Patterns::Bool(),
+                        "Faces whose imposed velocity has no normal component "
+                        "take part in contact.");
+      prm.declare_entry("Tolerance",
+                        "1e-9",
+                        Patterns::Double(0., 1e-2),
+                        "Allowed constraint violation relative to the "
+                        "smallest radius.");
+      prm.declare_entry("Dual solver",
+                        "projected Gauss-Seidel",
+                        Patterns::Selection(
+                          "projected gradient|accelerated projected "
+                          "gradient|projected Gauss-Seidel"),
+                        "Algorithm for the multipliers of the projection.");
+      prm.declare_entry("Alert distance",
+                        "0.1",
+                        Patterns::Double(0.),
+                        "Pairs closer than this gap, relative to the "
+                        "smallest radius, enter the constraints (never less "
+                        "than a safe multiple of dt * max |u|), >= 0.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    {
+      prm.declare_entry("End time",
+                        "20",
+                        Patterns::Double(0.),
+                        "Final time [time], >= 0; 0 does one solve.");
+      prm.declare_entry("Time step",
+                        "0.01",
+                        Patterns::Double(0.),
+                        "Time step [time], > 0 (the first and, without "
+                        "adaptive stepping, every step).");
+      prm.declare_entry("Adaptive time step",
+                        "false",
+                        Patterns::Bool(),
+                        "Use dt = min(Maximum time step, CFL number * h_min "
+                        "/ max |U|).");
+      prm.declare_entry("CFL number",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "C of the adaptive time step, > 0.");
+      prm.declare_entry("Maximum time step",
+                        "0.05",
+                        Patterns::Double(0.),
+                        "Upper bound of the adaptive time step [time], > 0.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Mesh refinement");
+    {
+      prm.declare_entry("Initial global refinement",
+                        "3",
+                        Patterns::Integer(0, 12),
+                        "Uniform refinements of the coarse box mesh (whose "
+                        "cells are near-cubes of the smallest box side).");
+      prm.declare_entry("Minimum level",
+                        "3",
+                        Patterns::Integer(0, 15),
+                        "Coarsest level far from particles, <= Initial "
+                        "global refinement.");
+      prm.declare_entry("Maximum level",
+                        "8",
+                        Patterns::Integer(0, 15),
+                        "Finest level at particle surfaces and in gaps, >= "
+                        "Initial global refinement.");
+      prm.declare_entry(
+        "Interface band",
+        "1",
+        Patterns::Double(0.),
+        "Cells closer to a particle surface than this many cell sizes (of "
+        "their own size) are refined, > 0. 1 gives the error of 2 or 3 "
+        "with 40 % fewer cells (doc/performance.md).");
+      prm.declare_entry("Gap refinement distance",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "Cells closer than this distance (relative to the "
+                        "smaller radius) to both surfaces of a pair whose gap "
+                        "is below it are refined to the maximum level.");
+      prm.declare_entry("Remesh fraction",
+                        "0.5",
+                        Patterns::Double(0.),
+                        "Remesh only once a particle has moved more than this "
+                        "fraction of the band (band * finest cell size) since "
+                        "the last remesh; 0 remeshes every step.");
+    }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    {
+      prm.declare_entry("Field output interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Steps between VTU field outputs; 0 = never.");
+      prm.declare_entry("Particle output interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Steps between VTP particle outputs; 0 = never.");
+      prm.declare_entry(
+        "Progress interval",
+        "0",
+        Patterns::Integer(0),
+        "Steps between progress lines on screen; 0 (the default) writes one "
+        "line every 'Progress wall interval' seconds instead, plus the "
+        "first and the last step.");
+      prm.declare_entry("Progress wall interval",
+                        "5",
+                        Patterns::Double(0.),
+                        "Seconds of wall clock between progress lines when "
+                        "'Progress interval' is 0; 0 writes every step.");
+      prm.declare_entry(
+        "Checkpoint interval",
+        "0",
+        Patterns::Integer(0),
+        "Steps between checkpoints (Output directory/checkpoint-NNNNNN); "
+        "0 = never. Whenever checkpoints are on, the last step of the run "
+        "is checkpointed too. Resume with 'fidus --resume input.prm'.");
+      prm.declare_entry(
+        "Checkpoint wall interval",
+        "0",
+        Patterns::Double(0.),
+        "Seconds of wall clock between checkpoints, so that a stopped run "
+        "loses at most that much; 0 = never. Combines with 'Checkpoint "
+        "interval' (whichever comes first).");
+      prm.declare_entry("Verbosity",
+                        "normal",
+                        Patterns::Selection("quiet|normal|verbose"),
+                        "Screen output: 'quiet' (errors and warnings only), "
+                        "'normal' (progress lines and timing table), "
+                        "'verbose' (solver details).");
+    }
+    prm.leave_subsection();
+  }
+} // namespace Fidus
