@@ -136,7 +136,7 @@ check "a failed run: exit status 2, stderr tail reported, row marked" \
 [ $status -eq 2 ] || { cat fail.err; cat fail.md; }
 
 # ------------------------------ 2. exact rigid inclusion, uniform refinement
-# Measured with this driver (fidus built on commit 4827ae9, defaults: penalty
+# Measured with this driver (fidus built on commit 636b1b5, defaults: penalty
 # 1000, rigidity tolerance 1e-3), L2 error of u (fluid) at uniform levels
 # 3, 4, 5: 1.0128e-02, 3.3932e-03, 3.3513e-03, i.e. orders 1.578 (3->4)
 # and 0.018 (4->5): level 4 happens to cut the particle favourably, level 5
