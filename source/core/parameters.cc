@@ -212,6 +212,16 @@ namespace Fidus
       amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
       amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
       amg_smoother_type         = prm.get("AMG smoother type");
+      geometric_multigrid       = prm.get("Preconditioner") == "GMG";
+      mg_smoother_degree        = prm.get_integer("Multigrid smoother degree");
+      mg_viscosity_averaging    = prm.get("Multigrid viscosity averaging");
+      if (geometric_multigrid && velocity_degree > 3)
+        throw InputError(
+          "entry 'Fluid/Linear solver/Preconditioner' has the value 'GMG' "
+          "with 'Fluid/Velocity degree' = " +
+          std::to_string(velocity_degree) +
+          "; allowed: GMG with Velocity degree 2 or 3, or Preconditioner = "
+          "AMG");
       prm.leave_subsection();
     }
     prm.leave_subsection();

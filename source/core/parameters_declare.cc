@@ -158,6 +158,27 @@ namespace Fidus
           "for 24 spheres at volume fraction 0.25; being block Jacobi "
           "across ranks, it is expected to weaken on many ranks (not "
           "measured; doc/fluid.md).");
+        prm.declare_entry(
+          "Preconditioner",
+          "AMG",
+          Patterns::Selection("AMG|GMG"),
+          "Velocity-block preconditioner: AMG (Trilinos ML with the rigid "
+          "modes) or GMG (geometric multigrid: matrix-free levels by global "
+          "coarsening, Chebyshev smoothing, CG with AMG on the coarse box "
+          "mesh; Velocity degree 2 or 3). See doc/fluid.md for which is "
+          "faster where.");
+        prm.declare_entry("Multigrid smoother degree",
+                          "4",
+                          Patterns::Integer(1, 20),
+                          "Degree of the Chebyshev smoother on each GMG "
+                          "level (matrix-vector products per smoothing).");
+        prm.declare_entry(
+          "Multigrid viscosity averaging",
+          "harmonic",
+          Patterns::Selection("none|arithmetic|harmonic|geometric"),
+          "How the viscosity (eta_f in the fluid, r eta_f in the solid) is "
+          "averaged over each cell of the GMG levels below the finest "
+          "(which uses the point values of the assembly).");
       }
       prm.leave_subsection();
     }

@@ -20,6 +20,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/stokes_solver.h>
+#include <fidus/fluid/velocity_multigrid.h>
 #include <fidus/mesh/canonical_cell_order.h>
 #include <limits>
 #include <sstream>
@@ -35,6 +36,9 @@ namespace Fidus
     /// Near-null space of the velocity block handed to ML; must outlive
     /// the AMG set-up.
     std::unique_ptr<Epetra_MultiVector> rigid_modes;
+    /// Geometric multigrid (Settings::geometric_multigrid), rebuilt when
+    /// the mesh changes.
+    std::unique_ptr<VelocityMultigrid<dim>> multigrid;
   };
 
 
@@ -197,6 +201,20 @@ namespace Fidus
                       mpi_communicator);
     solid_mask.reinit(owned_partitioning, mpi_communicator);
     multiplier_valid = false;
+
+    if (settings.geometric_multigrid)
+      {
+        typename VelocityMultigrid<dim>::Settings mg;
+        mg.degree          = settings.degree;
+        mg.smoother_degree = settings.mg_smoother_degree;
+        mg.averaging       = VelocityMultigrid<dim>::parse_averaging(
+          settings.mg_viscosity_averaging);
+        preconditioners->multigrid =
+          std::make_unique<VelocityMultigrid<dim>>(triangulation, mg);
+        preconditioners->multigrid->setup(dof_handler,
+                                          periodic_directions,
+                                          dirichlet_ids);
+      }
   }
 
 
@@ -222,6 +240,67 @@ namespace Fidus
                                                constraints,
                                                fe.component_mask(velocities));
     constraints.close();
+  }
+
+
+
+  template <int dim>
+  template <class Iterator>
+  bool
+  StokesSolver<dim>::is_shared_cell(
+    const SolidIndicator<dim>       &solid,
+    const Iterator                  &cell,
+    const std::vector<unsigned int> &candidates) const
+  {
+    // A cell whose solid lies within half a cell diameter of another
+    // particle (its bounding ball grown by half a diameter, about the reach
+    // of the cells that share DoFs with it; two particles closer than a
+    // cell), or that touches a face with imposed velocity: one velocity
+    // polynomial cannot be two rigid motions there. With
+    // 'Shared cells = fluid' its solid part is treated as fluid (no penalty,
+    // no multiplier, not in the rigidity residual), and each particle keeps
+    // its rigid motion from the rest of its solid.
+    if (!settings.release_shared_cells || candidates.empty())
+      return false;
+    std::vector<unsigned int> near;
+    solid.candidates(cell->center(), cell->diameter(), near);
+    for (const unsigned int k : near)
+      if (solid.owner(k) != solid.owner(near[0]))
+        return true;
+    // A face with imposed velocity is the other motion of a particle
+    // that touches a wall.
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary() &&
+          dirichlet_ids.count(cell->face(f)->boundary_id()) > 0)
+        return true;
+    return false;
+  }
+
+
+
+  template <int dim>
+  bool
+  StokesSolver<dim>::viscosity_at(const SolidIndicator<dim> &solid,
+                                  const Function<dim>       *fluid_viscosity,
+                                  const std::vector<unsigned int> &candidates,
+                                  const bool                       shared_cell,
+                                  const std::vector<Point<dim>>   &points,
+                                  std::vector<double>             &eta) const
+  {
+    bool meets_solid = false;
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const double eta_f = fluid_viscosity ?
+                               fluid_viscosity->value(points[q]) :
+                               settings.viscosity;
+        const bool   inside =
+          !candidates.empty() &&
+          solid.particle_containing(points[q], candidates) >= 0;
+        meets_solid |= inside;
+        eta[q] =
+          inside && !shared_cell ? settings.penalty_factor * eta_f : eta_f;
+      }
+    return meets_solid;
   }
 
 
@@ -261,37 +340,13 @@ namespace Fidus
     for (unsigned int k = 0; k < dofs_per_cell; ++k)
       is_velocity[k] = fe.system_to_component_index(k).first < dim;
 
-    const double r = settings.penalty_factor;
     shared.assign(triangulation.n_active_cells(), false);
     n_shared_cells = 0;
-    std::vector<unsigned int> near;
-    // A cell whose solid lies within half a cell diameter of another
-    // particle (its bounding ball grown by half a diameter, about the reach
-    // of the cells that share DoFs with it; two particles closer than a
-    // cell), or that touches a face with imposed velocity: one velocity
-    // polynomial cannot be two rigid motions there. With
-    // 'Shared cells = fluid' its solid part is treated as fluid (no penalty, no
-    // multiplier, not in the rigidity residual), and each particle keeps its
-    // rigid motion from the rest of its solid.
-    const auto near_two_particles = [&](const auto &cell) {
-      if (!settings.release_shared_cells || cands.empty())
-        return false;
-      solid.candidates(cell->center(), cell->diameter(), near);
-      for (const unsigned int k : near)
-        if (solid.owner(k) != solid.owner(near[0]))
-          return true;
-      // A face with imposed velocity is the other motion of a particle
-      // that touches a wall.
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary() &&
-            dirichlet_ids.count(cell->face(f)->boundary_id()) > 0)
-          return true;
-      return false;
-    };
+    std::vector<Point<dim>> points(n_q);
     for (const auto &cell : cells)
       {
         solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
-        const bool shared_cell = near_two_particles(cell);
+        const bool shared_cell = is_shared_cell(solid, cell, cands);
         if (!cell->is_locally_owned())
           {
             // Ghost cells only mark the solid mask of locally owned DoFs.
@@ -315,17 +370,10 @@ namespace Fidus
 
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
-        bool meets_solid = false;
         for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const Point<dim> &x = fe_values.quadrature_point(q);
-            const double      eta_f =
-              fluid_viscosity ? fluid_viscosity->value(x) : settings.viscosity;
-            const bool inside =
-              !cands.empty() && solid.particle_containing(x, cands) >= 0;
-            meets_solid |= inside;
-            eta[q] = inside && !shared_cell ? r * eta_f : eta_f;
-          }
+          points[q] = fe_values.quadrature_point(q);
+        const bool meets_solid =
+          viscosity_at(solid, fluid_viscosity, cands, shared_cell, points, eta);
         if (meets_solid && shared_cell)
           {
             shared[cell->active_cell_index()] = true;
@@ -526,6 +574,19 @@ namespace Fidus
   unsigned int
   StokesSolver<dim>::solve_linear(Statistics &stats)
   {
+    if (settings.geometric_multigrid)
+      return solve_linear(stats, *preconditioners->multigrid);
+    return solve_linear(stats, preconditioners->amg);
+  }
+
+
+
+  template <int dim>
+  template <class VelocityPreconditioner>
+  unsigned int
+  StokesSolver<dim>::solve_linear(Statistics                   &stats,
+                                  const VelocityPreconditioner &velocity)
+  {
     const double rhs_norm = rhs.l2_norm();
     if (rhs_norm == 0.)
       {
@@ -551,15 +612,16 @@ namespace Fidus
       settings.gmres_restart);
     if (settings.max_cheap_iterations > 0)
       {
-        SolverControl                  control(settings.max_cheap_iterations,
+        SolverControl control(settings.max_cheap_iterations,
                               target,
                               false,
                               false);
-        const BlockSchurPreconditioner cheap(system_matrix,
-                                             preconditioner_matrix.block(1, 1),
-                                             preconditioners->amg,
-                                             preconditioners->jacobi,
-                                             false);
+        const BlockSchurPreconditioner<VelocityPreconditioner> cheap(
+          system_matrix,
+          preconditioner_matrix.block(1, 1),
+          velocity,
+          preconditioners->jacobi,
+          false);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
@@ -574,16 +636,16 @@ namespace Fidus
     if (!done)
       {
         ++stats.expensive_solves;
-        SolverControl                  control(settings.max_linear_iterations,
+        SolverControl control(settings.max_linear_iterations,
                               target,
                               false,
                               false);
-        const BlockSchurPreconditioner expensive(system_matrix,
-                                                 preconditioner_matrix.block(1,
-                                                                             1),
-                                                 preconditioners->amg,
-                                                 preconditioners->jacobi,
-                                                 true);
+        const BlockSchurPreconditioner<VelocityPreconditioner> expensive(
+          system_matrix,
+          preconditioner_matrix.block(1, 1),
+          velocity,
+          preconditioners->jacobi,
+          true);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
@@ -630,73 +692,97 @@ namespace Fidus
     stats.assemble_seconds = timer.wall_time();
 
     timer.restart();
-    {
-      TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-      amg_data.elliptic              = true;
-      amg_data.higher_order_elements = true;
-      amg_data.smoother_sweeps       = settings.amg_smoother_sweeps;
-      amg_data.smoother_type         = settings.amg_smoother_type.c_str();
-      amg_data.aggregation_threshold = settings.amg_aggregation_threshold;
-      // Near-null space of the velocity block: translations and rotations.
-      // The solid is r times more viscous than the fluid, so the AMG coarse
-      // spaces must contain the rigid motions that leave the solid
-      // unstrained; translations alone (the usual constant modes) make the
-      // iteration count grow with r.
-      const Epetra_Map &row_map =
-        system_matrix.block(0, 0).trilinos_matrix().RowMap();
-      const unsigned int n_modes = dim == 2 ? 3 : 6;
-      preconditioners->rigid_modes =
-        std::make_unique<Epetra_MultiVector>(row_map, n_modes);
-      Epetra_MultiVector &modes = *preconditioners->rigid_modes;
-      Point<dim>          centre;
-      for (unsigned int d = 0; d < dim; ++d)
-        centre[d] = 0.5;
+    preconditioners->jacobi.initialize(preconditioner_matrix.block(1, 1));
+    if (settings.geometric_multigrid)
       {
-        const Quadrature<dim> support(fe.get_unit_support_points());
-        FEValues<dim>         fe_support(fe, support, update_quadrature_points);
-        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              fe_support.reinit(cell);
-              cell->get_dof_indices(dofs);
-              for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
-                {
-                  const unsigned int c = fe.system_to_component_index(k).first;
-                  if (c >= dim)
-                    continue;
-                  const int lid = row_map.LID(
-                    static_cast<TrilinosWrappers::types::int_type>(dofs[k]));
-                  if (lid < 0)
-                    continue;
-                  const Tensor<1, dim> x =
-                    fe_support.quadrature_point(k) - centre;
-                  modes[c][lid] = 1.;
-                  if (dim == 2)
-                    modes[2][lid] = c == 0 ? -x[1] : x[0];
-                  else
-                    {
-                      // rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0)
-                      const double rot[3][3] = {{0, x[dim - 1], -x[1]},
-                                                {-x[dim - 1], 0, x[0]},
-                                                {x[1], -x[0], 0}};
-                      for (unsigned int m = 0; m < 3; ++m)
-                        modes[dim + m][lid] = rot[c][m];
-                    }
-                }
-            }
+        std::vector<unsigned int> candidates;
+        preconditioners->multigrid->update(
+          [&](const typename Triangulation<dim>::cell_iterator &cell,
+              const bool,
+              const std::vector<Point<dim>> &points,
+              std::vector<double>           &eta) {
+            solid.candidates(cell->center(),
+                             0.5 * cell->diameter(),
+                             candidates);
+            viscosity_at(solid,
+                         fluid_viscosity,
+                         candidates,
+                         is_shared_cell(solid, cell, candidates),
+                         points,
+                         eta);
+          },
+          system_matrix.block(0, 0),
+          constraints);
       }
-      Teuchos::ParameterList              ml_parameters;
-      std::unique_ptr<Epetra_MultiVector> unused_modes;
-      amg_data.set_parameters(ml_parameters,
-                              unused_modes,
-                              system_matrix.block(0, 0));
-      ml_parameters.set("null space: type", "pre-computed");
-      ml_parameters.set("null space: dimension", int(n_modes));
-      ml_parameters.set("null space: vectors", modes.Values());
-      preconditioners->amg.initialize(system_matrix.block(0, 0), ml_parameters);
-      preconditioners->jacobi.initialize(preconditioner_matrix.block(1, 1));
-    }
+    else
+      {
+        TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+        amg_data.elliptic              = true;
+        amg_data.higher_order_elements = true;
+        amg_data.smoother_sweeps       = settings.amg_smoother_sweeps;
+        amg_data.smoother_type         = settings.amg_smoother_type.c_str();
+        amg_data.aggregation_threshold = settings.amg_aggregation_threshold;
+        // Near-null space of the velocity block: translations and rotations.
+        // The solid is r times more viscous than the fluid, so the AMG coarse
+        // spaces must contain the rigid motions that leave the solid
+        // unstrained; translations alone (the usual constant modes) make the
+        // iteration count grow with r.
+        const Epetra_Map &row_map =
+          system_matrix.block(0, 0).trilinos_matrix().RowMap();
+        const unsigned int n_modes = dim == 2 ? 3 : 6;
+        preconditioners->rigid_modes =
+          std::make_unique<Epetra_MultiVector>(row_map, n_modes);
+        Epetra_MultiVector &modes = *preconditioners->rigid_modes;
+        Point<dim>          centre;
+        for (unsigned int d = 0; d < dim; ++d)
+          centre[d] = 0.5;
+        {
+          const Quadrature<dim> support(fe.get_unit_support_points());
+          FEValues<dim> fe_support(fe, support, update_quadrature_points);
+          std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                fe_support.reinit(cell);
+                cell->get_dof_indices(dofs);
+                for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+                  {
+                    const unsigned int c =
+                      fe.system_to_component_index(k).first;
+                    if (c >= dim)
+                      continue;
+                    const int lid = row_map.LID(
+                      static_cast<TrilinosWrappers::types::int_type>(dofs[k]));
+                    if (lid < 0)
+                      continue;
+                    const Tensor<1, dim> x =
+                      fe_support.quadrature_point(k) - centre;
+                    modes[c][lid] = 1.;
+                    if (dim == 2)
+                      modes[2][lid] = c == 0 ? -x[1] : x[0];
+                    else
+                      {
+                        // rotations about x, y, z: (0,-z,y), (z,0,-x), (-y,x,0)
+                        const double rot[3][3] = {{0, x[dim - 1], -x[1]},
+                                                  {-x[dim - 1], 0, x[0]},
+                                                  {x[1], -x[0], 0}};
+                        for (unsigned int m = 0; m < 3; ++m)
+                          modes[dim + m][lid] = rot[c][m];
+                      }
+                  }
+              }
+        }
+        Teuchos::ParameterList              ml_parameters;
+        std::unique_ptr<Epetra_MultiVector> unused_modes;
+        amg_data.set_parameters(ml_parameters,
+                                unused_modes,
+                                system_matrix.block(0, 0));
+        ml_parameters.set("null space: type", "pre-computed");
+        ml_parameters.set("null space: dimension", int(n_modes));
+        ml_parameters.set("null space: vectors", modes.Values());
+        preconditioners->amg.initialize(system_matrix.block(0, 0),
+                                        ml_parameters);
+      }
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();

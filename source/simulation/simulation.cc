@@ -158,6 +158,9 @@ namespace Fidus
     ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
     ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
     ss.amg_smoother_type         = prm.amg_smoother_type;
+    ss.geometric_multigrid       = prm.geometric_multigrid;
+    ss.mg_smoother_degree        = prm.mg_smoother_degree;
+    ss.mg_viscosity_averaging    = prm.mg_viscosity_averaging;
     ss.reuse_multiplier          = prm.reuse_multiplier;
     ss.release_shared_cells      = prm.release_shared_cells;
     ss.verbose                   = prm.verbosity == Verbosity::verbose;

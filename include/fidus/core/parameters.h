@@ -100,6 +100,9 @@ namespace Fidus
     double       amg_aggregation_threshold = 0.;
     unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";
+    bool         geometric_multigrid       = false;
+    unsigned int mg_smoother_degree        = 4;
+    std::string  mg_viscosity_averaging    = "harmonic";
 
     // Particles
     std::vector<std::array<double, 3>> positions;

@@ -17,28 +17,30 @@ namespace Fidus
    *     P = [ A  B^T ]      P^{-1} r:  p = -S^{-1} r_p,
    *         [ 0  -S  ]                 u =  A^{-1} (r_u - B^T p),
    *
-   * with A^{-1} approximated by the velocity AMG and S^{-1} by the inverse of
+   * with A^{-1} approximated by @p VelocityPreconditioner (the ML AMG or the
+   * geometric multigrid) and S^{-1} by the inverse of
    * the pressure mass matrix weighted by 1/eta, which is spectrally
    * equivalent to the Schur complement B A^{-1} B^T even across large
    * viscosity jumps (the solid has r times the fluid viscosity).
    *
-   * "Cheap" mode applies one AMG V-cycle and one Jacobi sweep; "expensive"
+   * "Cheap" mode applies one V-cycle and one Jacobi sweep; "expensive"
    * mode solves both blocks with CG to a relative tolerance. FGMRES is used
    * outside because either mode is a nonlinear (or inexact) operator.
    */
+  template <class VelocityPreconditioner>
   class BlockSchurPreconditioner : public Subscriptor
   {
   public:
     /// @p stokes: the system matrix; @p mass: the 1/eta pressure mass;
     /// @p expensive selects inner solves.
-    BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix  &stokes,
-                             const TrilinosWrappers::SparseMatrix       &mass,
-                             const TrilinosWrappers::PreconditionAMG    &amg,
+    BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix &stokes,
+                             const TrilinosWrappers::SparseMatrix      &mass,
+                             const VelocityPreconditioner &velocity,
                              const TrilinosWrappers::PreconditionJacobi &jacobi,
                              const bool expensive)
       : stokes(stokes)
       , mass(mass)
-      , amg(amg)
+      , velocity(velocity)
       , jacobi(jacobi)
       , expensive(expensive)
     {}
@@ -71,11 +73,11 @@ namespace Fidus
           SolverControl control(10000, 1e-2 * tmp.l2_norm());
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
           dst.block(0) = 0;
-          cg.solve(stokes.block(0, 0), dst.block(0), tmp, amg);
+          cg.solve(stokes.block(0, 0), dst.block(0), tmp, velocity);
           inner_iterations += control.last_step();
         }
       else
-        amg.vmult(dst.block(0), tmp);
+        velocity.vmult(dst.block(0), tmp);
     }
 
     /// Inner CG iterations done so far (expensive mode).
@@ -84,7 +86,7 @@ namespace Fidus
   private:
     const TrilinosWrappers::BlockSparseMatrix  &stokes;
     const TrilinosWrappers::SparseMatrix       &mass;
-    const TrilinosWrappers::PreconditionAMG    &amg;
+    const VelocityPreconditioner               &velocity;
     const TrilinosWrappers::PreconditionJacobi &jacobi;
     const bool                                  expensive;
     mutable TrilinosWrappers::MPI::Vector       tmp;

@@ -55,6 +55,11 @@ namespace Fidus
       double       amg_aggregation_threshold = 0.;
       unsigned int amg_smoother_sweeps       = 4;
       std::string  amg_smoother_type         = "Chebyshev";
+      /// Velocity-block preconditioner: geometric multigrid (true) or the
+      /// ML AMG.
+      bool         geometric_multigrid    = false;
+      unsigned int mg_smoother_degree     = 4;
+      std::string  mg_viscosity_averaging = "harmonic";
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
@@ -244,6 +249,31 @@ namespace Fidus
     rigidity_residual(const SolidIndicator<dim> &solid) const;
     unsigned int
     solve_linear(Statistics &stats);
+    /// One FGMRES solve with @p velocity as the velocity-block
+    /// preconditioner.
+    template <class VelocityPreconditioner>
+    unsigned int
+    solve_linear(Statistics &stats, const VelocityPreconditioner &velocity);
+    /// Whether the solid of @p cell is released
+    /// (Settings::release_shared_cells): within half a cell diameter of two
+    /// particles (@p candidates: the particles near the cell), or touching a
+    /// face with imposed velocity.
+    template <class Iterator>
+    bool
+    is_shared_cell(const SolidIndicator<dim>       &solid,
+                   const Iterator                  &cell,
+                   const std::vector<unsigned int> &candidates) const;
+    /// The viscosity at @p points of a cell (of any mesh) near the
+    /// particles @p candidates: r eta_f in the solid unless the cell is
+    /// shared, eta_f elsewhere. Returns whether a point is in the solid.
+    /// The assembly and the multigrid levels both use it.
+    bool
+    viscosity_at(const SolidIndicator<dim>       &solid,
+                 const Function<dim>             *fluid_viscosity,
+                 const std::vector<unsigned int> &candidates,
+                 bool                             shared_cell,
+                 const std::vector<Point<dim>>   &points,
+                 std::vector<double>             &eta) const;
     void
     make_pressure_rhs_consistent();
 

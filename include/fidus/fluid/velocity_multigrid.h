@@ -1,0 +1,134 @@
+#ifndef fidus_fluid_velocity_multigrid_h
+#define fidus_fluid_velocity_multigrid_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <functional>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * Geometric multigrid for the velocity block A = (2 eta e(u), e(v)) of the
+   * penalised Stokes system: one V-cycle is one application of the
+   * preconditioner.
+   *
+   * - Levels by global coarsening: the simulation mesh, then the meshes
+   *   obtained by coarsening every cell once, down to the coarse box mesh.
+   *   Each level is an ordinary active mesh with its own hanging-node,
+   *   periodicity and (zero) Dirichlet constraints, so hanging nodes on
+   *   periodic faces (sliding walls with adaptive refinement), which
+   *   deal.II's local smoothing refuses, need no mesh rule.
+   * - Matrix-free level operators (VelocityOperator), Chebyshev smoothing
+   *   on the inverse diagonal, a coarse solve by CG with an AMG
+   *   preconditioner on the assembled coarse matrix.
+   * - The viscosity on a level is asked from the owner at the level's
+   *   quadrature points (the particles are known exactly at every level) and
+   *   then, below the finest level, averaged over each cell by the chosen
+   *   rule. The finest level uses the point values, so its operator is the
+   *   system's A.
+   */
+  template <int dim>
+  class VelocityMultigrid
+  {
+  public:
+    /// How the viscosity is averaged over a cell below the finest level.
+    enum class Averaging
+    {
+      none,
+      arithmetic,
+      harmonic,
+      geometric
+    };
+
+    /// Settings of the V-cycle.
+    struct Settings
+    {
+      unsigned int degree              = 2;
+      unsigned int smoother_degree     = 4;
+      double       smoothing_range     = 15.;
+      unsigned int eigenvalue_cg_steps = 10;
+      Averaging    averaging           = Averaging::harmonic;
+      /// Relative tolerance of the coarse CG.
+      double coarse_tolerance = 1e-3;
+    };
+
+    /// Size and cost of the hierarchy.
+    struct Info
+    {
+      unsigned int            n_levels       = 0;
+      types::global_dof_index coarse_dofs    = 0;
+      double                  setup_seconds  = 0.; ///< last setup()
+      double                  update_seconds = 0.; ///< last update()
+    };
+
+    /**
+     * The viscosity at @p points of @p cell, written to @p eta. @p cell
+     * belongs to the simulation mesh when @p active_mesh is set, else to a
+     * coarser level mesh (a different triangulation).
+     */
+    using ViscosityFunction =
+      std::function<void(const typename Triangulation<dim>::cell_iterator &cell,
+                         bool                           active_mesh,
+                         const std::vector<Point<dim>> &points,
+                         std::vector<double>           &eta)>;
+
+    /// Parse "none|arithmetic|harmonic|geometric".
+    static Averaging
+    parse_averaging(const std::string &name);
+
+    VelocityMultigrid(const parallel::distributed::Triangulation<dim> &tria,
+                      const Settings &settings);
+    ~VelocityMultigrid();
+
+    /**
+     * Build the level meshes, DoFs, constraints, operators and transfers
+     * after the simulation mesh changed. @p system: the Stokes DoF handler
+     * (velocity components first, numbered as DoFRenumbering::hierarchical
+     * then by velocity/pressure block); its velocity block is mapped onto
+     * the finest level.
+     */
+    void
+    setup(const DoFHandler<dim>              &system,
+          const std::vector<unsigned int>    &periodic_directions,
+          const std::set<types::boundary_id> &dirichlet_ids);
+
+    /**
+     * New viscosity (the particles moved): level coefficients, diagonals,
+     * Chebyshev bounds, coarse matrix and its AMG. @p velocity_block and
+     * @p system_constraints: the assembled A and the constraints of the
+     * system, whose constrained rows are inverted exactly.
+     */
+    void
+    update(const ViscosityFunction              &viscosity,
+           const TrilinosWrappers::SparseMatrix &velocity_block,
+           const AffineConstraints<double>      &system_constraints);
+
+    /// dst = one V-cycle applied to src (velocity block vectors).
+    void
+    vmult(TrilinosWrappers::MPI::Vector       &dst,
+          const TrilinosWrappers::MPI::Vector &src) const;
+
+    /// Levels, coarse size and set-up times.
+    const Info &
+    get_info() const;
+
+    class Implementation;
+
+  private:
+    const parallel::distributed::Triangulation<dim> &triangulation;
+    const Settings                                   settings;
+    std::unique_ptr<Implementation>                  implementation;
+  };
+} // namespace Fidus
+
+#endif
