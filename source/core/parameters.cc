@@ -215,6 +215,7 @@ namespace Fidus
       geometric_multigrid       = prm.get("Preconditioner") == "GMG";
       mg_smoother_degree        = prm.get_integer("Multigrid smoother degree");
       mg_viscosity_averaging    = prm.get("Multigrid viscosity averaging");
+      rigid_body_correction     = prm.get_bool("Rigid-body correction");
       if (geometric_multigrid && velocity_degree > 3)
         throw InputError(
           "entry 'Fluid/Linear solver/Preconditioner' has the value 'GMG' "

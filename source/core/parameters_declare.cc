@@ -174,11 +174,24 @@ namespace Fidus
                           "level (matrix-vector products per smoothing).");
         prm.declare_entry(
           "Multigrid viscosity averaging",
-          "harmonic",
+          "none",
           Patterns::Selection("none|arithmetic|harmonic|geometric"),
           "How the viscosity (eta_f in the fluid, r eta_f in the solid) is "
-          "averaged over each cell of the GMG levels below the finest "
-          "(which uses the point values of the assembly).");
+          "averaged over each cell of the GMG levels below the finest: none "
+          "(the point values at each level's own quadrature points, measured "
+          "fastest for particles: doc/fluid.md), or the arithmetic, harmonic "
+          "or geometric mean over the cell. The finest level always uses the "
+          "point values of the assembly.");
+        prm.declare_entry(
+          "Rigid-body correction",
+          "true",
+          Patterns::Bool(),
+          "Correct the velocity V-cycle (AMG or GMG) with the rigid motions "
+          "of every particle, before and after it: each particle adds "
+          "low-energy modes (its rigid motions, resisted only by the fluid "
+          "around it) that one V-cycle misses, so that without the "
+          "correction the FGMRES count grows with the number of particles "
+          "(doc/fluid.md).");
       }
       prm.leave_subsection();
     }

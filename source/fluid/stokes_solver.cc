@@ -19,6 +19,8 @@
 #include <deque>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
+#include <fidus/fluid/deflated_velocity_preconditioner.h>
+#include <fidus/fluid/rigid_mode_correction.h>
 #include <fidus/fluid/stokes_solver.h>
 #include <fidus/fluid/velocity_multigrid.h>
 #include <fidus/mesh/canonical_cell_order.h>
@@ -39,6 +41,8 @@ namespace Fidus
     /// Geometric multigrid (Settings::geometric_multigrid), rebuilt when
     /// the mesh changes.
     std::unique_ptr<VelocityMultigrid<dim>> multigrid;
+    /// The particles' rigid motions (Settings::rigid_body_correction).
+    RigidModeCorrection rigid_body_correction;
   };
 
 
@@ -342,29 +346,40 @@ namespace Fidus
 
     shared.assign(triangulation.n_active_cells(), false);
     n_shared_cells = 0;
+    solid_entry_of_dof.assign(owned_partitioning[0].n_elements(), -1);
     std::vector<Point<dim>> points(n_q);
+    // The velocity DoFs of a cell that meets the solid (outside shared
+    // cells) are held rigid by the multiplier (solid mask), and belong to
+    // that particle's rigid motions in the preconditioner's coarse space
+    // (the first particle seen, in mesh order, where two meet).
+    const auto mark_solid_dofs = [&](const auto &cell) {
+      int entry = -1;
+      for (unsigned int q = 0; q < n_q && entry < 0; ++q)
+        entry = solid.particle_containing(fe_values.quadrature_point(q), cands);
+      if (entry < 0)
+        return;
+      cell->get_dof_indices(dofs);
+      for (unsigned int k = 0; k < dofs_per_cell; ++k)
+        if (is_velocity[k] && solid_mask.in_local_range(dofs[k]))
+          {
+            solid_mask(dofs[k]) = 1.;
+            int &e = solid_entry_of_dof[owned_partitioning[0].index_within_set(
+              dofs[k])];
+            if (e < 0)
+              e = entry;
+          }
+    };
     for (const auto &cell : cells)
       {
         solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
         const bool shared_cell = is_shared_cell(solid, cell, cands);
         if (!cell->is_locally_owned())
           {
-            // Ghost cells only mark the solid mask of locally owned DoFs.
+            // Ghost cells only mark the locally owned DoFs.
             if (cands.empty() || shared_cell)
               continue;
             fe_values.reinit(cell);
-            bool meets_solid = false;
-            for (unsigned int q = 0; q < n_q && !meets_solid; ++q)
-              meets_solid =
-                solid.particle_containing(fe_values.quadrature_point(q),
-                                          cands) >= 0;
-            if (meets_solid)
-              {
-                cell->get_dof_indices(dofs);
-                for (unsigned int k = 0; k < dofs_per_cell; ++k)
-                  if (is_velocity[k] && solid_mask.in_local_range(dofs[k]))
-                    solid_mask(dofs[k]) = 1.;
-              }
+            mark_solid_dofs(cell);
             continue;
           }
 
@@ -380,9 +395,7 @@ namespace Fidus
             ++n_shared_cells;
           }
         if (meets_solid && !shared_cell)
-          for (unsigned int k = 0; k < dofs_per_cell; ++k)
-            if (is_velocity[k] && solid_mask.in_local_range(dofs[k]))
-              solid_mask(dofs[k]) = 1.;
+          mark_solid_dofs(cell);
 
         cell_matrix = 0;
         cell_prec   = 0;
@@ -571,12 +584,100 @@ namespace Fidus
 
 
   template <int dim>
+  void
+  StokesSolver<dim>::build_rigid_body_correction(
+    const SolidIndicator<dim> &solid)
+  {
+    std::vector<unsigned int> rows, particles;
+    std::vector<double>       values;
+    const unsigned int        n_modes = dim == 2 ? 3 : 6;
+    if (settings.rigid_body_correction && solid.n_particles() > 0)
+      {
+        // The rigid motions of entry e (a particle or one of its periodic
+        // images: the rotation is about the centre of the piece the DoF
+        // belongs to) at the support points of the owned velocity DoFs.
+        const Quadrature<dim> support(fe.get_unit_support_points());
+        FEValues<dim>         fe_support(fe, support, update_quadrature_points);
+        std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+        std::vector<bool> done(solid_entry_of_dof.size(), false);
+        for (const auto &cell : cells)
+          {
+            if (!cell->is_locally_owned() && !cell->is_ghost())
+              continue;
+            cell->get_dof_indices(dofs);
+            bool any = false;
+            for (unsigned int k = 0; k < dofs.size() && !any; ++k)
+              any = fe.system_to_component_index(k).first < dim &&
+                    owned_partitioning[0].is_element(dofs[k]) &&
+                    !done[owned_partitioning[0].index_within_set(dofs[k])] &&
+                    solid_entry_of_dof[owned_partitioning[0].index_within_set(
+                      dofs[k])] >= 0;
+            if (!any)
+              continue;
+            fe_support.reinit(cell);
+            for (unsigned int k = 0; k < dofs.size(); ++k)
+              {
+                const unsigned int c = fe.system_to_component_index(k).first;
+                if (c >= dim || !owned_partitioning[0].is_element(dofs[k]) ||
+                    constraints.is_constrained(dofs[k]))
+                  continue;
+                const unsigned int i =
+                  owned_partitioning[0].index_within_set(dofs[k]);
+                if (done[i] || solid_entry_of_dof[i] < 0)
+                  continue;
+                done[i]                = true;
+                const unsigned int   e = solid_entry_of_dof[i];
+                const Tensor<1, dim> x =
+                  fe_support.quadrature_point(k) - solid.center(e);
+                rows.push_back(i);
+                particles.push_back(solid.owner(e));
+                // translations, then rotations (about z in 2D; about x, y,
+                // z in 3D): component c of e_m x (x - centre)
+                for (unsigned int m = 0; m < dim; ++m)
+                  values.push_back(m == c ? 1. : 0.);
+                if (dim == 2)
+                  values.push_back(c == 0 ? -x[1] : x[0]);
+                else
+                  {
+                    const double rot[3][3] = {{0, x[dim - 1], -x[1]},
+                                              {-x[dim - 1], 0, x[0]},
+                                              {x[1], -x[0], 0}};
+                    for (unsigned int m = 0; m < 3; ++m)
+                      values.push_back(rot[c][m]);
+                  }
+              }
+          }
+      }
+    preconditioners->rigid_body_correction.reinit(
+      system_matrix.block(0, 0),
+      settings.rigid_body_correction ? solid.n_particles() : 0,
+      n_modes,
+      std::move(rows),
+      std::move(particles),
+      std::move(values));
+  }
+
+
+
+  template <int dim>
   unsigned int
   StokesSolver<dim>::solve_linear(Statistics &stats)
   {
+    const auto &A = system_matrix.block(0, 0);
+    const auto &Q = preconditioners->rigid_body_correction;
     if (settings.geometric_multigrid)
-      return solve_linear(stats, *preconditioners->multigrid);
-    return solve_linear(stats, preconditioners->amg);
+      return solve_linear(
+        stats,
+        DeflatedVelocityPreconditioner<VelocityMultigrid<dim>>(
+          A,
+          *preconditioners->multigrid,
+          Q));
+    return solve_linear(
+      stats,
+      DeflatedVelocityPreconditioner<TrilinosWrappers::PreconditionAMG>(
+        A,
+        preconditioners->amg,
+        Q));
   }
 
 
@@ -783,7 +884,17 @@ namespace Fidus
         preconditioners->amg.initialize(system_matrix.block(0, 0),
                                         ml_parameters);
       }
+    build_rigid_body_correction(solid);
     stats.setup_seconds = timer.wall_time();
+    if (settings.verbose &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "    rigid-body correction: "
+                << (preconditioners->rigid_body_correction.empty() ?
+                      "off" :
+                      "on")
+                << ", set-up "
+                << preconditioners->rigid_body_correction.setup_seconds << " s"
+                << std::endl;
 
     timer.restart();
     const double rho = 2. * (settings.penalty_factor - 1.) * settings.viscosity;

@@ -161,6 +161,7 @@ namespace Fidus
     ss.geometric_multigrid       = prm.geometric_multigrid;
     ss.mg_smoother_degree        = prm.mg_smoother_degree;
     ss.mg_viscosity_averaging    = prm.mg_viscosity_averaging;
+    ss.rigid_body_correction     = prm.rigid_body_correction;
     ss.reuse_multiplier          = prm.reuse_multiplier;
     ss.release_shared_cells      = prm.release_shared_cells;
     ss.verbose                   = prm.verbosity == Verbosity::verbose;

@@ -102,7 +102,8 @@ namespace Fidus
     std::string  amg_smoother_type         = "Chebyshev";
     bool         geometric_multigrid       = false;
     unsigned int mg_smoother_degree        = 4;
-    std::string  mg_viscosity_averaging    = "harmonic";
+    std::string  mg_viscosity_averaging    = "none";
+    bool         rigid_body_correction     = true;
 
     // Particles
     std::vector<std::array<double, 3>> positions;

@@ -59,7 +59,10 @@ namespace Fidus
       /// ML AMG.
       bool         geometric_multigrid    = false;
       unsigned int mg_smoother_degree     = 4;
-      std::string  mg_viscosity_averaging = "harmonic";
+      std::string  mg_viscosity_averaging = "none";
+      /// Correct each V-cycle with the particles' rigid motions
+      /// (RigidModeCorrection).
+      bool rigid_body_correction = true;
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
@@ -249,6 +252,10 @@ namespace Fidus
     rigidity_residual(const SolidIndicator<dim> &solid) const;
     unsigned int
     solve_linear(Statistics &stats);
+    /// The rigid motions of every particle on the DoFs of its solid, for
+    /// the velocity preconditioner (after assemble_system()).
+    void
+    build_rigid_body_correction(const SolidIndicator<dim> &solid);
     /// One FGMRES solve with @p velocity as the velocity-block
     /// preconditioner.
     template <class VelocityPreconditioner>
@@ -287,6 +294,10 @@ namespace Fidus
     /// Locally owned and ghost cells in mesh order (canonical_cell_order):
     /// every loop that adds up over cells runs in this order.
     std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+
+    /// Per locally owned velocity DoF: the solid entry (SolidIndicator) of
+    /// the cells that hold it rigid, or -1.
+    std::vector<int> solid_entry_of_dof;
 
     /// Shared cells of the last assembly, and how many (all ranks).
     std::vector<bool> shared;

@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# Velocity-block preconditioners of the fluid predictor, in one run on one
+# machine: the ML AMG against the geometric multigrid (GMG), each with and
+# without the particles' rigid-body correction (Fluid/Linear solver/
+# Rigid-body correction). Scenes:
+#   inclusion3d L  one sphere (a = 0.2) off-centre, exact rigid inclusion,
+#                  maximum level L (one solve)
+#   inclusion2d L  one disc (a = 0.15) off-centre, exact rigid inclusion
+#   dense2d        prm/dense_suspension_2d.prm, first step (3 Uzawa solves)
+#   paper2d        prm/two_particles_2d.prm, gluey, the whole run
+#   spheres3d      24 spheres at volume fraction 0.25 between sliding walls,
+#                  level 4, one step (as contrib/benchmarks/suspension_3d.sh)
+# Prints one row per scene and preconditioner: cells, Uzawa solves, FGMRES
+# iterations (total and per solve), set-up and solve seconds of the fluid
+# predictor summed over the run, and the run's wall seconds.
+# Usage: contrib/benchmarks/velocity_preconditioner.sh [scene ...]
+#        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
+#         dense2d, paper2d)
+set -euo pipefail
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+[ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
+fidus="${FIDUS:-$top/build-release/fidus}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+scene_prm() {
+  local scene=$1 level=${2:-}
+  case $scene in
+    inclusion2d|inclusion3d)
+      local dim=${scene:9:1}
+      if [ "$dim" = 2 ]; then ll="0, 0"; ur="1, 1"; r=0.15; x="0.53, 0.48"
+      else ll="0, 0, 0"; ur="1, 1, 1"; r=0.2; x="0.53, 0.48, 0.51"; fi
+      cat <<EOF
+set Dimension = $dim
+subsection Domain
+  set Lower left = $ll
+  set Upper right = $ur
+  set Boundary condition = exact rigid inclusion
+end
+subsection Particles
+  set Radius = $r
+  set Positions = $x
+end
+subsection Time stepping
+  set End time = 0
+end
+subsection Mesh refinement
+  set Initial global refinement = 2
+  set Minimum level = 2
+  set Maximum level = $level
+end
+EOF
+      ;;
+    dense2d)
+      cat <<EOF
+include $top/prm/dense_suspension_2d.prm
+subsection Time stepping
+  set End time = 0
+end
+subsection Fluid
+  set Maximum Uzawa iterations = 3
+end
+subsection Output
+  set Checkpoint wall interval = 0
+end
+EOF
+      ;;
+    paper2d)
+      echo "include $top/prm/two_particles_2d.prm"
+      ;;
+    spheres3d)
+      # Same placement as suspension_3d.sh (random sequential addition).
+      /usr/bin/python3 - "$work/positions.txt" <<'PY'
+import math, random, sys
+n, phi = 24, 0.25
+a = (3 * phi / (4 * math.pi * n)) ** (1 / 3)
+random.seed(1)
+x = []
+def d2(p, q):
+    dx = p[0] - q[0] - round(p[0] - q[0])
+    dz = p[2] - q[2] - round(p[2] - q[2])
+    return dx * dx + (p[1] - q[1]) ** 2 + dz * dz
+while len(x) < n:
+    p = (random.random(), random.random(), random.random())
+    if a + 1e-3 < p[1] < 1 - a - 1e-3 and all(d2(p, q) >= (2 * a + 1e-3) ** 2 for q in x):
+        x.append(p)
+open(sys.argv[1], "w").write("".join("%.15f %.15f %.15f\n" % p for p in x))
+PY
+      a=$(/usr/bin/python3 -c "import math; print((3*0.25/(4*math.pi*24))**(1/3))")
+      cat <<EOF
+set Dimension = 3
+subsection Domain
+  set Lower left = 0, 0, 0
+  set Upper right = 1, 1, 1
+  set Boundary condition = sliding walls
+end
+subsection Fluid
+  set Rigidity tolerance = 1e-2
+  set Maximum Uzawa iterations = 5
+end
+subsection Particles
+  set Radius = $a
+  set Positions file = $work/positions.txt
+end
+subsection Contact
+  set Model = gluey
+end
+subsection Time stepping
+  set End time = 0
+end
+subsection Mesh refinement
+  set Initial global refinement = 2
+  set Minimum level = 2
+  set Maximum level = 4
+end
+EOF
+      ;;
+    *) echo "unknown scene '$scene'" >&2; exit 1 ;;
+  esac
+}
+
+run() {
+  local label=$1 pc=$2 rb=$3; shift 3
+  local prm="$work/run.prm"
+  scene_prm "$@" > "$prm"
+  cat >> "$prm" <<EOF
+set Output directory = $work/out
+subsection Fluid
+  subsection Linear solver
+    set Preconditioner = $pc
+    set Rigid-body correction = $rb
+  end
+end
+subsection Output
+  set Verbosity = verbose
+  set Field output interval = 0
+  set Particle output interval = 0
+end
+EOF
+  local start=$(date +%s.%N)
+  local log
+  log=$("$fidus" "$prm" 2>&1) || { echo "$label: run failed"; echo "$log" | tail -5; return; }
+  local wall=$(echo "$(date +%s.%N) - $start" | bc)
+  echo "$log" | /usr/bin/python3 -c '
+import re, sys
+label, pc, rb, wall = sys.argv[1:5]
+text = sys.stdin.read()
+cells = re.findall(r"cells (\d+)", text)
+uz = [int(u) for u in re.findall(r"Uzawa (\d+)  FGMRES", text)]
+fg = [int(f) for f in re.findall(r"Uzawa \d+  FGMRES (\d+)", text)]
+setup = sum(float(s) for s in re.findall(r"preconditioner set-up ([0-9.e-]+) s", text))
+solve = sum(float(s) for s in re.findall(r"Uzawa/FGMRES ([0-9.e-]+) s", text))
+print("| %-14s | %s | %-5s | %7s | %5d | %7d | %6.1f | %7.2f | %8.2f | %7.1f |" % (
+    label, pc, rb, cells[-1] if cells else "?", sum(uz), sum(fg),
+    sum(fg) / max(sum(uz), 1), setup, solve, float(wall)))
+' "$label" "$pc" "$rb" "$wall"
+}
+
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=("inclusion2d 8" "inclusion3d 3" "inclusion3d 4" "inclusion3d 5" dense2d paper2d)
+echo "| scene          | PC  | rigid | cells   | Uzawa | FGMRES  | /solve | set-up s | solve s  | wall s  |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for s in "${scenes[@]}"; do
+  for pc in AMG GMG; do
+    for rb in false true; do
+      # shellcheck disable=SC2086
+      run "$s" $pc $rb $s
+    done
+  done
+done
