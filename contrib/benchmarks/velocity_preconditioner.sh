@@ -10,7 +10,7 @@
 #   paper2d        prm/two_particles_2d.prm, gluey, the whole run
 #   spheres3d      24 spheres at volume fraction 0.25 between sliding walls,
 #                  level 4, one step (as contrib/benchmarks/suspension_3d.sh)
-# Prints one row per scene and preconditioner: cells, Uzawa solves, FGMRES
+# Prints one row per scene and preconditioner: cells, Uzawa iterations, FGMRES
 # iterations (total and per solve), set-up and solve seconds of the fluid
 # predictor summed over the run, and the run's wall seconds.
 # Usage: contrib/benchmarks/velocity_preconditioner.sh [scene ...]
@@ -146,8 +146,15 @@ import re, sys
 label, pc, rb, wall = sys.argv[1:5]
 text = sys.stdin.read()
 cells = re.findall(r"cells (\d+)", text)
-uz = [int(u) for u in re.findall(r"Uzawa (\d+)  FGMRES", text)]
-fg = [int(f) for f in re.findall(r"Uzawa \d+  FGMRES (\d+)", text)]
+# Per solve (verbose lines): the last "Uzawa k: ... FGMRES total N" before
+# each "Stokes: assembly" line gives its Uzawa iterations and FGMRES total.
+uz, fg, last = [], [], None
+for line in text.splitlines():
+    m = re.search(r"Uzawa (\d+): .*FGMRES total (\d+)", line)
+    if m:
+        last = (int(m.group(1)) + 1, int(m.group(2)))
+    elif "Stokes: assembly" in line and last:
+        uz.append(last[0]); fg.append(last[1]); last = None
 setup = sum(float(s) for s in re.findall(r"preconditioner set-up ([0-9.e-]+) s", text))
 solve = sum(float(s) for s in re.findall(r"Uzawa/FGMRES ([0-9.e-]+) s", text))
 print("| %-14s | %s | %-5s | %7s | %5d | %7d | %6.1f | %7.2f | %8.2f | %7.1f |" % (

@@ -51,6 +51,10 @@ expect_error "particle outside the box" "cuts or lies outside the box face x = 1
   "$(base | sed 's/0.549, 0.49/0.98, 0.49/')"
 expect_error "radius <= 0" "Particles/Radius.*allowed: a radius > 0" \
   "$(base | sed 's/Radius = 0.05/Radius = -0.05/')"
+expect_error "GMG with Velocity degree 4" "Preconditioner' has the value 'GMG' with 'Fluid/Velocity degree' = 4; allowed: GMG with Velocity degree 2 or 3" \
+  "$(base; printf 'subsection Fluid\n  set Velocity degree = 4\n  subsection Linear solver\n    set Preconditioner = GMG\n  end\nend\n')"
+expect_error "unknown preconditioner" "Preconditioner" \
+  "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
 expect_error "penalty factor <= 1" "Penalty factor.*allowed: a value > 1" \
   "$(base; printf 'subsection Fluid\n  set Penalty factor = 1\nend\n')"
 expect_error "wrong number of coordinates" "Particles/Positions.*allowed: exactly 2 coordinates" \

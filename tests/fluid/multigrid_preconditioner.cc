@@ -1,16 +1,16 @@
 // The geometric multigrid preconditioner (Fluid/Linear solver/Preconditioner
 // = GMG) against known answers: on the exact rigid inclusion (2D, off the
 // mesh's symmetry) it gives the solution of the ML AMG to the linear
-// tolerance, omega within 0.5 % of -g/2, and FGMRES iterations per Uzawa
-// solve that do not grow with the maximum level as 1/h would (at most x2 over
-// two levels, where 1/h is x4). Velocity degree 3 and a 3D case run through
-// the same code.
+// tolerance, omega within 1 % of -g/2 at level 7, and FGMRES iterations per
+// Uzawa solve that do not grow with the maximum level as 1/h would (at most x2
+// over two levels, where 1/h is x4). Velocity degree 3 and a 3D case run
+// through the same code.
 
 #include "../fidus_test.h"
 
+#include <cmath>
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
-#include <cmath>
 
 using namespace FidusTest;
 
@@ -62,7 +62,11 @@ main(int argc, char **argv)
               std::abs(gmg.omega_error - amg.omega_error),
               0.,
               1e-5);
-  check_range("2D level 7: GMG relative omega error", gmg.omega_error, 0., 0.005);
+  // The discretisation's error off the mesh's symmetry (the same with AMG).
+  check_range("2D level 7: GMG relative omega error",
+              gmg.omega_error,
+              0.,
+              0.01);
   check_range("2D level 7: GMG L2 error of u / AMG L2 error of u",
               gmg.u_l2_error / amg.u_l2_error,
               0.999,
@@ -76,12 +80,47 @@ main(int argc, char **argv)
               2.);
 
   const auto q3 = run(2, 6, "GMG", 3);
-  check_range("2D Q3 level 6: GMG relative omega error", q3.omega_error, 0., 0.005);
-
-  const auto three = run(3, 4, "GMG");
-  check_range("3D level 4: GMG relative omega error",
-              three.omega_error,
+  check_range("2D Q3 level 6: GMG relative omega error",
+              q3.omega_error,
               0.,
-              0.01);
+              0.005);
+
+  // Two particles closer than their radius (the seed's scene at t = 0):
+  // the rigid-body correction changes the preconditioner, not the answer.
+  const auto pair = [](const bool correction) {
+    std::ostringstream prm;
+    prm << "set Dimension = 2\nset Output directory = run_output\n"
+        << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+        << "  subsection Linear solver\n    set Tolerance = 1e-9\n"
+        << "    set Preconditioner = GMG\n    set Rigid-body correction = "
+        << (correction ? "true" : "false") << "\n  end\nend\n"
+        << "subsection Particles\n  set Radius = 0.05\n"
+        << "  set Positions = 0.451, 0.51; 0.549, 0.49\nend\n"
+        << "subsection Time stepping\n  set End time = 0\nend\n"
+        << "subsection Mesh refinement\n  set Maximum level = 7\nend\n"
+        << "subsection Output\n  set Verbosity = quiet\nend\n";
+    return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+  };
+  const auto with       = pair(true);
+  const auto without    = pair(false);
+  double     difference = 0.;
+  for (unsigned int p = 0; p < 2; ++p)
+    difference = std::max(
+      {difference,
+       std::abs(with.omegas[p][2] - without.omegas[p][2]),
+       std::abs(with.velocities[p][0] - without.velocities[p][0]) / 0.05,
+       std::abs(with.velocities[p][1] - without.velocities[p][1]) / 0.05});
+  check_range("pair: |omega| and |U|/a with minus without the rigid-body "
+              "correction (shear rate 1)",
+              difference,
+              0.,
+              1e-5);
+
+  const auto three    = run(3, 4, "GMG");
+  const auto three_ml = run(3, 4, "AMG");
+  check_range("3D level 4: GMG L2 error of u / AMG L2 error of u",
+              three.u_l2_error / three_ml.u_l2_error,
+              0.999,
+              1.001);
   return exit_code();
 }
