@@ -252,6 +252,12 @@ namespace Fidus
     rigidity_residual(const SolidIndicator<dim> &solid) const;
     unsigned int
     solve_linear(Statistics &stats);
+    /// After assemble_system(): the Jacobi of the pressure mass, the velocity
+    /// V-cycle (AMG, or the new viscosity of the GMG levels) and the
+    /// rigid-body correction (stokes_solver_preconditioners.cc).
+    void
+    setup_preconditioners(const SolidIndicator<dim> &solid,
+                          const Function<dim>       *fluid_viscosity);
     /// The rigid motions of every particle on the DoFs of its solid, for
     /// the velocity preconditioner (after assemble_system()).
     void
@@ -265,10 +271,9 @@ namespace Fidus
     /// (Settings::release_shared_cells): within half a cell diameter of two
     /// particles (@p candidates: the particles near the cell), or touching a
     /// face with imposed velocity.
-    template <class Iterator>
     bool
-    is_shared_cell(const SolidIndicator<dim>       &solid,
-                   const Iterator                  &cell,
+    is_shared_cell(const SolidIndicator<dim>                        &solid,
+                   const typename Triangulation<dim>::cell_iterator &cell,
                    const std::vector<unsigned int> &candidates) const;
     /// The viscosity at @p points of a cell (of any mesh) near the
     /// particles @p candidates: r eta_f in the solid unless the cell is
