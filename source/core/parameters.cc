@@ -421,6 +421,7 @@ namespace Fidus
       contact_tolerance   = prm.get_double("Tolerance");
       dual_solver         = prm.get("Dual solver");
       alert_distance      = prm.get_double("Alert distance");
+      drag_coefficient    = prm.get_double("Drag coefficient");
     }
     prm.leave_subsection();
 

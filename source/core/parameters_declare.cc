@@ -314,6 +314,16 @@ namespace Fidus
                         "Pairs closer than this gap, relative to the "
                         "smallest radius, enter the constraints (never less "
                         "than a safe multiple of dt * max |u|), >= 0.");
+      prm.declare_entry(
+        "Drag coefficient",
+        "0",
+        Patterns::Double(0.),
+        "Force per unit velocity that turns the contact correction "
+        "u - u* of a particle into a contact force, for the contact "
+        "stress in statistics.csv (the projection itself does not use "
+        "it); 0: the Stokes drag of an isolated particle of the mean "
+        "radius, 6 pi eta a in 3D and 4 pi eta per unit length in 2D. "
+        ">= 0.");
     }
     prm.leave_subsection();
 

@@ -786,6 +786,11 @@ namespace Fidus
                 break;
               }
             previous_residual = stats.rigidity_residual;
+            // The last iteration keeps the multiplier its solution was
+            // computed with: the stress (HydrodynamicStress) needs the
+            // pair that satisfies the momentum equation.
+            if (k + 1 == settings.max_uzawa_iterations)
+              break;
             // f = rho M u: the plain Uzawa update.
             f = distributed_solution.block(0);
             f.scale(solid_mask.block(0));

@@ -5,6 +5,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/particles/rigid_motion.h>
+#include <fidus/rheology/contact_stress.h>
 #include <fidus/simulation/progress_line.h>
 #include <fidus/simulation/simulation.h>
 #include <fidus/simulation/stop_request.h>
@@ -70,35 +71,51 @@ namespace Fidus
         throw RunError(what + ": " + error);
     }
 
-    const std::vector<std::string> particle_columns   = {"step",
-                                                         "time",
-                                                         "id",
-                                                         "x",
-                                                         "y",
-                                                         "z",
-                                                         "ux",
-                                                         "uy",
-                                                         "uz",
-                                                         "omega_x",
-                                                         "omega_y",
-                                                         "omega_z",
-                                                         "radius"};
-    const std::vector<std::string> statistics_columns = {"step",
-                                                         "time",
-                                                         "dt",
-                                                         "cells",
-                                                         "dofs",
-                                                         "uzawa_iterations",
-                                                         "linear_iterations",
-                                                         "rigidity_residual",
-                                                         "min_gap",
-                                                         "active_contacts",
-                                                         "glued_contacts",
-                                                         "wall_seconds",
-                                                         "remeshed",
-                                                         "contact_iterations",
-                                                         "shared_cells",
-                                                         "shared_residual"};
+    const std::vector<std::string> particle_columns = {"step",
+                                                       "time",
+                                                       "id",
+                                                       "x",
+                                                       "y",
+                                                       "z",
+                                                       "ux",
+                                                       "uy",
+                                                       "uz",
+                                                       "omega_x",
+                                                       "omega_y",
+                                                       "omega_z",
+                                                       "radius",
+                                                       "stresslet_xx",
+                                                       "stresslet_xy",
+                                                       "stresslet_xz",
+                                                       "stresslet_yy",
+                                                       "stresslet_yz",
+                                                       "stresslet_zz"};
+    const std::vector<std::string> run_columns      = {"step",
+                                                       "time",
+                                                       "dt",
+                                                       "cells",
+                                                       "dofs",
+                                                       "uzawa_iterations",
+                                                       "linear_iterations",
+                                                       "rigidity_residual",
+                                                       "min_gap",
+                                                       "active_contacts",
+                                                       "glued_contacts",
+                                                       "wall_seconds",
+                                                       "remeshed",
+                                                       "contact_iterations",
+                                                       "shared_cells",
+                                                       "shared_residual"};
+
+    /// statistics.csv: the run's columns, then the stress columns.
+    std::vector<std::string>
+    statistics_columns()
+    {
+      std::vector<std::string> c = run_columns;
+      for (const std::string &name : SuspensionStress::column_names())
+        c.push_back(name);
+      return c;
+    }
   } // namespace
 
 
@@ -126,6 +143,16 @@ namespace Fidus
   {
     projector.set_walls(box.walls);
     projector.set_periodicity(box.periods);
+    // A contact correction u - u* is a velocity; the force that gives it to
+    // an isolated particle is its Stokes drag (doc/rheology.md).
+    double mean_radius = 0.;
+    for (const double a : parameters.radii)
+      mean_radius += a / std::max<std::size_t>(1, parameters.radii.size());
+    contact_drag =
+      parameters.drag_coefficient > 0. ?
+        parameters.drag_coefficient :
+        (dim == 3 ? 6. * numbers::PI * parameters.viscosity * mean_radius :
+                    4. * numbers::PI * parameters.viscosity);
 
     if (root)
       std::filesystem::create_directories(prm.output_directory);
@@ -166,6 +193,9 @@ namespace Fidus
     ss.release_shared_cells      = prm.release_shared_cells;
     ss.verbose                   = prm.verbosity == Verbosity::verbose;
     solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
+    hydrodynamic_stress =
+      std::make_unique<HydrodynamicStress<dim>>(box.periodic,
+                                                box.dirichlet_ids);
 
     typename MeshRefiner<dim>::Settings ms;
     ms.minimum_level = prm.minimum_level;
@@ -213,6 +243,7 @@ namespace Fidus
             project_onto_admissible_set(dt);
             advance_particles(dt);
             predict_velocities();
+            measure_stress();
             write_output(dt);
             if (checkpoint_or_stop())
               break;
@@ -250,6 +281,18 @@ namespace Fidus
     s.n_dofs                  = fictitious ? solver->n_dofs() : 0;
     s.wall_seconds            = elapsed_wall_seconds();
     s.stop_signal             = stop_signal;
+    s.stress                  = stress;
+    s.solid_fraction          = hydrodynamic.solid_fraction;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        {
+          s.hydrodynamic_stress[3 * a + b] = hydrodynamic.total[a][b];
+          s.wall_stress[3 * a + b]         = hydrodynamic.wall[a][b];
+          s.mean_strain_rate[3 * a + b] = hydrodynamic.mean_strain_rate[a][b];
+        }
+    for (const auto &t : hydrodynamic.stresslets)
+      s.stresslets.push_back(
+        {{t[0][0], t[0][1], t[0][2], t[1][1], t[1][2], t[2][2]}});
     return s;
   }
 
@@ -277,7 +320,7 @@ namespace Fidus
                                   root);
     statistics_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                  statistics_columns,
+                                  statistics_columns(),
                                   root);
     particle_output =
       std::make_unique<ParticleOutput>(prm.output_directory,
@@ -287,6 +330,7 @@ namespace Fidus
       field_output = std::make_unique<FieldOutput<dim>>(prm.output_directory);
 
     predict_velocities();
+    measure_stress();
     write_output(0.);
     if (exact)
       report_exact_solution_errors();
@@ -320,7 +364,7 @@ namespace Fidus
                                     state.step);
       statistics_csv =
         std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                    statistics_columns,
+                                    statistics_columns(),
                                     root,
                                     state.step);
       particle_output =
@@ -643,6 +687,45 @@ namespace Fidus
 
   template <int dim>
   void
+  Simulation<dim>::measure_stress()
+  {
+    TimerOutput::Scope scope(*timer, "stress");
+    const double       g = shear(state.time);
+    if (fictitious)
+      hydrodynamic = hydrodynamic_stress->compute(*solver, solid);
+    else
+      {
+        // Free-draining particles carry no stress of their own: the
+        // undisturbed shear flow's viscous stress.
+        hydrodynamic        = typename HydrodynamicStress<dim>::Result();
+        hydrodynamic.volume = 1.;
+        for (unsigned int d = 0; d < dim; ++d)
+          hydrodynamic.volume *= box.hi[d] - box.lo[d];
+        hydrodynamic.total[0][1]            = prm.viscosity * g;
+        hydrodynamic.mean_strain_rate[0][1] = 0.5 * g;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int b = 0; b < 3; ++b)
+            hydrodynamic.wall[a][b] = std::numeric_limits<double>::quiet_NaN();
+        hydrodynamic.stresslets.assign(n, SymmetricTensor<2, 3>());
+      }
+    const SymmetricTensor<2, 3> contact =
+      contact_stress(projector.constraints(),
+                     prm.radii,
+                     contact_drag,
+                     hydrodynamic.volume);
+    stress = SuspensionStress::combine(hydrodynamic.total,
+                                       hydrodynamic.particle,
+                                       hydrodynamic.wall[0][1],
+                                       contact,
+                                       prm.viscosity,
+                                       g,
+                                       dim);
+  }
+
+
+
+  template <int dim>
+  void
   Simulation<dim>::write_output(const double dt)
   {
     TimerOutput::Scope scope(*timer, "output");
@@ -660,7 +743,13 @@ namespace Fidus
                                 s.W[i][0],
                                 s.W[i][1],
                                 s.W[i][2],
-                                prm.radii[i]});
+                                prm.radii[i],
+                                hydrodynamic.stresslets[i][0][0],
+                                hydrodynamic.stresslets[i][0][1],
+                                hydrodynamic.stresslets[i][0][2],
+                                hydrodynamic.stresslets[i][1][1],
+                                hydrodynamic.stresslets[i][1][2],
+                                hydrodynamic.stresslets[i][2][2]});
 
     double gap = std::numeric_limits<double>::infinity();
     if (n > 0)
@@ -699,23 +788,26 @@ namespace Fidus
 
     const double cells =
       fictitious ? double(tria->n_global_active_cells()) : 0.;
-    const double dofs = fictitious ? double(solver->n_dofs()) : 0.;
-    statistics_csv->write_row({double(s.step),
-                               s.time,
-                               dt,
-                               cells,
-                               dofs,
-                               double(fluid_stats.uzawa_iterations),
-                               double(fluid_stats.linear_iterations),
-                               fluid_stats.rigidity_residual,
+    const double        dofs = fictitious ? double(solver->n_dofs()) : 0.;
+    std::vector<double> row  = {double(s.step),
+                                s.time,
+                                dt,
+                                cells,
+                                dofs,
+                                double(fluid_stats.uzawa_iterations),
+                                double(fluid_stats.linear_iterations),
+                                fluid_stats.rigidity_residual,
                                std::isfinite(gap) ? gap : 0.,
-                               double(n_active),
-                               double(n_glued),
-                               elapsed_wall_seconds(),
-                               double(remeshed),
-                               double(contact_iterations),
-                               double(fluid_stats.shared_cells),
-                               fluid_stats.shared_residual});
+                                double(n_active),
+                                double(n_glued),
+                                elapsed_wall_seconds(),
+                                double(remeshed),
+                                double(contact_iterations),
+                                double(fluid_stats.shared_cells),
+                                fluid_stats.shared_residual};
+    for (const double v : stress.values())
+      row.push_back(v);
+    statistics_csv->write_row(row);
 
     if (field_output && s.step % prm.field_output_interval == 0)
       field_output->write(*solver, solid, s.step, s.time);

@@ -116,6 +116,10 @@ namespace Fidus
     double       contact_tolerance = 1e-9;
     std::string  dual_solver       = "projected Gauss-Seidel";
     double       alert_distance    = 0.1;
+    /// Drag coefficient zeta that turns a contact correction of velocity
+    /// into a force (F = zeta (u - u*)) for the contact stress; 0: the
+    /// isolated particle's Stokes drag (see doc/rheology.md).
+    double drag_coefficient = 0.;
 
     // Time stepping
     double end_time           = 20.;

@@ -149,6 +149,13 @@ namespace Fidus
       return dof_handler;
     }
 
+    /// The settings in use.
+    const Settings &
+    get_settings() const
+    {
+      return settings;
+    }
+
     /// The finite element.
     const FESystem<dim> &
     get_fe() const

@@ -17,6 +17,8 @@
 #include <fidus/io/particle_output.h>
 #include <fidus/mesh/mesh_refiner.h>
 #include <fidus/particles/solid_indicator.h>
+#include <fidus/rheology/hydrodynamic_stress.h>
+#include <fidus/rheology/suspension_stress.h>
 #include <fidus/simulation/box_geometry.h>
 #include <fidus/simulation/checkpoint.h>
 #include <fidus/simulation/run_state.h>
@@ -63,6 +65,16 @@ namespace Fidus
     double wall_seconds = 0.;
     /// The signal that stopped the run before its End time (0: none).
     int stop_signal = 0;
+    /// Stress of the last step: the statistics.csv columns, the
+    /// hydrodynamic stress of the box by volume average and at the walls
+    /// (3 x 3, row-major; NaN where a wall direction is missing), the box's
+    /// mean strain rate, its solid fraction and every particle's stresslet
+    /// (xx, xy, xz, yy, yz, zz).
+    SuspensionStress                   stress;
+    std::array<double, 9>              hydrodynamic_stress{}, wall_stress{};
+    std::array<double, 9>              mean_strain_rate{};
+    double                             solid_fraction = 0.;
+    std::vector<std::array<double, 6>> stresslets;
   };
 
   /**
@@ -139,6 +151,10 @@ namespace Fidus
     /// undisturbed shear flow at the centres.
     void
     predict_velocities();
+    /// The suspension's stress: hydrodynamic from the fluid solve, contact
+    /// from the projection that led to this step (doc/rheology.md).
+    void
+    measure_stress();
     /// CSV rows, VTU/VTP output and the progress line of this step.
     void
     write_output(double dt);
@@ -176,8 +192,9 @@ namespace Fidus
     std::unique_ptr<StokesSolver<dim>>                                 solver;
     std::unique_ptr<MeshRefiner<dim>>                                  refiner;
     std::unique_ptr<ExactRigidInclusion<dim>>                          exact;
-    BoundaryVelocity<dim>                                              boundary;
-    SolidIndicator<dim>                                                solid;
+    std::unique_ptr<HydrodynamicStress<dim>> hydrodynamic_stress;
+    BoundaryVelocity<dim>                    boundary;
+    SolidIndicator<dim>                      solid;
 
     std::unique_ptr<CsvWriter>        particles_csv, statistics_csv;
     std::unique_ptr<ParticleOutput>   particle_output;
@@ -191,7 +208,12 @@ namespace Fidus
     typename StokesSolver<dim>::Statistics fluid_stats;
     bool                                   remeshed = false;
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
-    std::vector<RunState::Vec3> u_star, w_star, u_corrected;
+    std::vector<RunState::Vec3>              u_star, w_star, u_corrected;
+    typename HydrodynamicStress<dim>::Result hydrodynamic;
+    SuspensionStress                         stress;
+    /// Force per unit velocity of a contact correction (Contact/Drag
+    /// coefficient, or the Stokes drag).
+    double contact_drag = 0.;
 
     /// Wall clock of the last progress line and checkpoint.
     double last_progress_wall = -1., last_checkpoint_wall = 0.;

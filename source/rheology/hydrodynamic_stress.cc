@@ -1,0 +1,286 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <fidus/rheology/hydrodynamic_stress.h>
+#include <limits>
+#include <map>
+
+namespace Fidus
+{
+  namespace
+  {
+    /// A dim x dim symmetric tensor in the top-left block of a 3 x 3 one.
+    template <int dim>
+    SymmetricTensor<2, 3>
+    embed(const SymmetricTensor<2, dim> &t)
+    {
+      SymmetricTensor<2, 3> r;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          r[i][j] = t[i][j];
+      return r;
+    }
+
+    /// Append the 6 independent entries of @p t to @p v at @p offset.
+    void
+    add_to(std::vector<double>         &v,
+           const std::size_t            offset,
+           const SymmetricTensor<2, 3> &t,
+           const double                 weight)
+    {
+      for (unsigned int k = 0; k < 6; ++k)
+        v[offset + k] +=
+          weight * t[SymmetricTensor<2, 3>::unrolled_to_component_indices(k)];
+    }
+
+    SymmetricTensor<2, 3>
+    read_from(const std::vector<double> &v, const std::size_t offset)
+    {
+      SymmetricTensor<2, 3> t;
+      for (unsigned int k = 0; k < 6; ++k)
+        t[SymmetricTensor<2, 3>::unrolled_to_component_indices(k)] =
+          v[offset + k];
+      return t;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  HydrodynamicStress<dim>::HydrodynamicStress(
+    const std::vector<unsigned int>    &periodic_directions,
+    const std::set<types::boundary_id> &dirichlet_ids)
+    : periodic_directions(periodic_directions)
+    , dirichlet_ids(dirichlet_ids)
+  {
+    for (unsigned int b = 0; b < dim; ++b)
+      if (dirichlet_ids.count(2 * b) > 0 && dirichlet_ids.count(2 * b + 1) > 0)
+        wall_directions.push_back(b);
+  }
+
+
+
+  template <int dim>
+  typename HydrodynamicStress<dim>::Result
+  HydrodynamicStress<dim>::compute(const StokesSolver<dim>   &solver,
+                                   const SolidIndicator<dim> &solid) const
+  {
+    const DoFHandler<dim> &dof_handler = solver.get_dof_handler();
+    const FESystem<dim>   &fe          = solver.get_fe();
+    const auto            &settings    = solver.get_settings();
+    const MPI_Comm         comm        = dof_handler.get_communicator();
+    const double           eta_f       = settings.viscosity;
+    const double           eta_s       = settings.penalty_factor * eta_f;
+    const auto            &shared      = solver.get_shared_cells();
+    const auto            &solution    = solver.get_solution();
+    const auto            &multiplier  = solver.get_multiplier();
+    const unsigned int     n           = solid.n_particles();
+
+    const QGauss<dim> &quadrature = solver.get_quadrature();
+    const unsigned int n_q        = quadrature.size();
+    FEValues<dim>      fe_values(fe,
+                            quadrature,
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
+    // The support points of a cell's DoFs (the boundary DoFs' x_b).
+    FEValues<dim>                    support(fe,
+                          Quadrature<dim>(fe.get_unit_support_points()),
+                          update_quadrature_points);
+    const FEValuesExtractors::Vector velocities(0);
+    const FEValuesExtractors::Scalar pressure(dim);
+    const unsigned int               dofs_per_cell = fe.n_dofs_per_cell();
+
+    // The residual lives in the conforming space: hanging nodes and
+    // periodicity, but no imposed velocity (the wall DoFs are where the
+    // residual is wanted).
+    AffineConstraints<double> constraints;
+    IndexSet                  relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    constraints.reinit(relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    for (const unsigned int d : periodic_directions)
+      DoFTools::make_periodicity_constraints(dof_handler,
+                                             2 * d,
+                                             2 * d + 1,
+                                             d,
+                                             constraints);
+    constraints.close();
+    // Writable ghost entries: cells of this rank add to the wall DoFs of
+    // others.
+    TrilinosWrappers::MPI::Vector residual;
+    residual.reinit(dof_handler.locally_owned_dofs(), relevant, comm, true);
+    // Locally owned DoFs with imposed velocity: component and position.
+    std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>>
+      wall_dofs;
+
+    // Box sums: int sigma (6), int e(u) (6), int_f p, V_f, V.
+    std::vector<double> box(15, 0.);
+    // Per particle: int sigma (6), int e(u) (6), V_a.
+    std::vector<double> part(13 * std::size_t(n), 0.);
+
+    // The box (its faces are the walls).
+    Point<dim> box_lo, box_hi;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        box_lo[d] = std::numeric_limits<double>::max();
+        box_hi[d] = -std::numeric_limits<double>::max();
+      }
+    for (const auto &cell : solver.get_cells())
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            box_lo[d] = std::min(box_lo[d], cell->vertex(v)[d]);
+            box_hi[d] = std::max(box_hi[d], cell->vertex(v)[d]);
+          }
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        box_lo[d] = Utilities::MPI::min(box_lo[d], comm);
+        box_hi[d] = Utilities::MPI::max(box_hi[d], comm);
+      }
+
+    std::vector<double>                  p(n_q);
+    std::vector<SymmetricTensor<2, dim>> e_u(n_q), e_lambda(n_q);
+    std::vector<SymmetricTensor<2, dim>> sigma(n_q);
+    std::vector<unsigned int>            cands;
+    std::vector<types::global_dof_index> dofs(dofs_per_cell);
+    dealii::Vector<double>               cell_residual(dofs_per_cell);
+
+    for (const auto &cell : solver.get_cells())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        fe_values.reinit(cell);
+        fe_values[pressure].get_function_values(solution, p);
+        fe_values[velocities].get_function_symmetric_gradients(solution, e_u);
+        solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+        // The same rule as the assembly (StokesSolver::viscosity_at() and
+        // the multiplier load): r eta_f and lambda on the solid of cells
+        // that are not shared; shared cells are fluid.
+        const bool held = !cands.empty() && !shared[cell->active_cell_index()];
+        if (held)
+          fe_values[velocities].get_function_symmetric_gradients(multiplier,
+                                                                 e_lambda);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const int entry =
+              cands.empty() ?
+                -1 :
+                solid.particle_containing(fe_values.quadrature_point(q), cands);
+            const bool inside = entry >= 0;
+            sigma[q]          = 2. * (inside && held ? eta_s : eta_f) * e_u[q];
+            for (unsigned int d = 0; d < dim; ++d)
+              sigma[q][d][d] -= p[q];
+            if (inside && held)
+              sigma[q] += e_lambda[q];
+
+            Tensor3 s3 = embed<dim>(sigma[q]);
+            if (dim == 2)
+              s3[2][2] = -p[q]; // plane strain
+            const Tensor3 e3  = embed<dim>(e_u[q]);
+            const double  JxW = fe_values.JxW(q);
+            add_to(box, 0, s3, JxW);
+            add_to(box, 6, e3, JxW);
+            box[14] += JxW;
+            if (inside)
+              {
+                const std::size_t o = 13 * std::size_t(solid.owner(entry));
+                add_to(part, o, s3, JxW);
+                add_to(part, o + 6, e3, JxW);
+                part[o + 12] += JxW;
+              }
+            else
+              {
+                box[12] += p[q] * JxW;
+                box[13] += JxW;
+              }
+          }
+
+        // The residual of the wall DoFs: the cells that touch a wall, and
+        // the finer cells next to a coarser wall cell, whose hanging nodes
+        // pass part of their residual on to the coarse cell's wall DoFs.
+        // Such a cell is at most two of its own sizes from the wall (one
+        // level of difference across faces and edges); three is safe.
+        bool near_wall = false;
+        for (const unsigned int b : wall_directions)
+          {
+            double lo = cell->vertex(0)[b], hi = lo;
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                lo = std::min(lo, cell->vertex(v)[b]);
+                hi = std::max(hi, cell->vertex(v)[b]);
+              }
+            if (std::min(lo - box_lo[b], box_hi[b] - hi) <= 3. * (hi - lo))
+              near_wall = true;
+          }
+        if (!near_wall)
+          continue;
+        cell_residual = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            cell_residual(k) +=
+              (sigma[q] * fe_values[velocities].symmetric_gradient(k, q)) *
+              fe_values.JxW(q);
+        cell->get_dof_indices(dofs);
+        constraints.distribute_local_to_global(cell_residual, dofs, residual);
+        bool at_wall = false;
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              dirichlet_ids.count(cell->face(f)->boundary_id()) > 0)
+            at_wall = true;
+        if (!at_wall)
+          continue;
+        support.reinit(cell);
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              dirichlet_ids.count(cell->face(f)->boundary_id()) > 0)
+            for (unsigned int k = 0; k < dofs_per_cell; ++k)
+              {
+                const unsigned int c = fe.system_to_component_index(k).first;
+                if (c < dim && fe.has_support_on_face(k, f) &&
+                    dof_handler.locally_owned_dofs().is_element(dofs[k]) &&
+                    !constraints.is_constrained(dofs[k]))
+                  wall_dofs[dofs[k]] = {c, support.quadrature_point(k)};
+              }
+      }
+    residual.compress(VectorOperation::add);
+
+    std::vector<double> wall(9, 0.);
+    for (const auto &[j, where] : wall_dofs)
+      for (const unsigned int b : wall_directions)
+        wall[3 * where.first + b] += where.second[b] * residual(j);
+
+    Utilities::MPI::sum(box, comm, box);
+    Utilities::MPI::sum(part, comm, part);
+    Utilities::MPI::sum(wall, comm, wall);
+
+    Result r;
+    r.volume           = box[14];
+    r.total            = read_from(box, 0) / r.volume;
+    r.mean_strain_rate = read_from(box, 6) / r.volume;
+    r.fluid_pressure   = box[13] > 0 ? box[12] / box[13] : 0.;
+    r.solid_fraction   = 1. - box[13] / r.volume;
+    r.stresslets.resize(n);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const std::size_t o = 13 * std::size_t(a);
+        Tensor3 s = read_from(part, o) - 2. * eta_f * read_from(part, o + 6);
+        for (unsigned int d = 0; d < 3; ++d)
+          s[d][d] += r.fluid_pressure * part[o + 12];
+        r.stresslets[a] = s;
+        r.particle += s / r.volume;
+      }
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = 0; b < 3; ++b)
+        r.wall[a][b] = std::numeric_limits<double>::quiet_NaN();
+    for (const unsigned int b : wall_directions)
+      for (unsigned int a = 0; a < dim; ++a)
+        r.wall[a][b] = wall[3 * a + b] / r.volume;
+    return r;
+  }
+
+  template class HydrodynamicStress<2>;
+  template class HydrodynamicStress<3>;
+} // namespace Fidus

@@ -1,0 +1,114 @@
+// The contact stress of a projection (Fidus::contact_stress) against hand
+// computations: Sigma_c = -(zeta / V) sum_k lambda_k l_k e_k (x) e_k.
+// - Two touching discs (radius 0.1) driven into each other at speed 1,
+//   inelastic: both stop, lambda = 1, branch 0.2, so Sigma_xx = -0.2 zeta/V
+//   (compression, positive particle pressure) and nothing else.
+// - The same pair, gluey, pulled apart on the next step: the glue holds
+//   (lambda = -1), Sigma_xx = +0.2 zeta/V (tension).
+// - A disc pushed into the lower wall at speed 1: lambda = 1, branch = the
+//   radius, Sigma_yy = -0.1 zeta/V.
+// - Pairs in the alert band that do not push contribute nothing.
+
+#include "../fidus_test.h"
+
+#include <fidus/contact/contact_projector.h>
+#include <fidus/rheology/contact_stress.h>
+
+using namespace FidusTest;
+using Fidus::Contact::Vec3;
+
+namespace
+{
+  constexpr double zeta = 2., volume = 0.5;
+
+  /// Largest |Sigma_ij - expected_ij| over all entries.
+  double
+  deviation(const dealii::SymmetricTensor<2, 3> &s,
+            const dealii::SymmetricTensor<2, 3> &expected)
+  {
+    double d = 0.;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        d = std::max(d, std::abs(s[i][j] - expected[i][j]));
+    return d;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  Fidus::Contact::Settings settings;
+  settings.dimension        = 2;
+  settings.model            = Fidus::Contact::Model::gluey;
+  settings.alert_distance   = 0.05;
+  std::vector<double> radii = {0.1, 0.1, 0.1};
+  // Particle 2 sits far away, inside the alert band of nobody.
+  std::vector<Vec3> x = {{{0.4, 0.5, 0.}}, {{0.6, 0.5, 0.}}, {{2., 2., 0.}}};
+  std::vector<Vec3> u;
+
+  for (const auto model :
+       {Fidus::Contact::Model::inelastic, Fidus::Contact::Model::gluey})
+    {
+      settings.model = model;
+      Fidus::Contact::ContactProjector projector(settings);
+      const std::string                name =
+        model == Fidus::Contact::Model::gluey ? "gluey" : "inelastic";
+      projector.project(x,
+                        radii,
+                        {{{1., 0., 0.}}, {{-1., 0., 0.}}, {{0., 0., 0.}}},
+                        0.01,
+                        u);
+      dealii::SymmetricTensor<2, 3> expected;
+      expected[0][0] = -zeta * 0.2 / volume;
+      check_range(name + " pair pushed together: max |Sigma_c - expected|",
+                  deviation(Fidus::contact_stress(projector.constraints(),
+                                                  radii,
+                                                  zeta,
+                                                  volume),
+                            expected),
+                  0.,
+                  1e-9);
+      if (model != Fidus::Contact::Model::gluey)
+        continue;
+      projector.project(x,
+                        radii,
+                        {{{-1., 0., 0.}}, {{1., 0., 0.}}, {{0., 0., 0.}}},
+                        0.01,
+                        u);
+      expected[0][0] = zeta * 0.2 / volume;
+      check_range("gluey pair pulled apart: max |Sigma_c - expected|",
+                  deviation(Fidus::contact_stress(projector.constraints(),
+                                                  radii,
+                                                  zeta,
+                                                  volume),
+                            expected),
+                  0.,
+                  1e-9);
+    }
+
+  // A disc touching the lower wall y = 0, pushed into it; a second disc in
+  // the alert band of the first, moving along with it.
+  settings.model = Fidus::Contact::Model::inelastic;
+  Fidus::Contact::ContactProjector projector(settings);
+  Fidus::Contact::Wall             wall;
+  wall.axis     = 1;
+  wall.position = 0.;
+  wall.side     = 1;
+  projector.set_walls({wall});
+  x     = {{{0.5, 0.1, 0.}}, {{0.72, 0.1, 0.}}};
+  radii = {0.1, 0.1};
+  projector.project(x, radii, {{{0., -1., 0.}}, {{0., -1., 0.}}}, 0.01, u);
+  dealii::SymmetricTensor<2, 3> expected;
+  expected[1][1] = -2. * zeta * 0.1 / volume;
+  check_range("two discs pushed into the wall: max |Sigma_c - expected|",
+              deviation(Fidus::contact_stress(projector.constraints(),
+                                              radii,
+                                              zeta,
+                                              volume),
+                        expected),
+              0.,
+              1e-9);
+  return exit_code();
+}
