@@ -19,7 +19,7 @@ for scene in two_particles_2d dense_suspension_2d two_particles_3d; do
     echo "include $top/prm/$scene.prm"
     echo "set Output directory = $work/$scene"
     echo "subsection Time stepping"
-    echo "  set End time = $(grep -m1 'Time step' "$top/prm/$scene.prm" |
+    echo "  set End time = $(grep -m1 '^ *set Time step' "$top/prm/$scene.prm" |
                             sed 's/.*= *//' | awk -v n="$steps" '{print $1 * n}')"
     echo "end"
     echo "subsection Output"
@@ -28,7 +28,7 @@ for scene in two_particles_2d dense_suspension_2d two_particles_3d; do
     echo "end"
   } > "$work/$scene.prm"
   "$fidus" "$work/$scene.prm" > "$work/$scene.log" 2>&1
-  total=$(grep -m1 'Total wall clock time' "$work/$scene.log" |
+  total=$(grep -m1 'Total wallclock time' "$work/$scene.log" |
             sed 's/.*elapsed since start *| *//; s/s.*//')
   stress=$(grep '^| stress ' "$work/$scene.log" | awk -F'|' '{print $4}' | sed 's/s//')
   awk -v s="$scene" -v n="$steps" -v t="$total" -v x="$stress" \
