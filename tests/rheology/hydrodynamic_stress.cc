@@ -1,6 +1,6 @@
-// The hydrodynamic stress of the suspension (HydrodynamicStress) against
-// known answers, on direct solves of the penalised Stokes problem (2D,
-// uniform mesh, two discs):
+// The hydrodynamic stress of the suspension (HydrodynamicStress), on 1 and 2
+// MPI ranks, against known answers, on direct solves of the penalised Stokes
+// problem (2D, two discs):
 // - a rigid-body rotation of the whole box (the boundary turns it): every
 //   stresslet, the deviatoric box stress and the mean strain rate vanish;
 // - a linear shear imposed on the whole boundary: the stress from the
