@@ -205,6 +205,7 @@ namespace Fidus
       max_uzawa_iterations = prm.get_integer("Maximum Uzawa iterations");
       reuse_multiplier     = prm.get_bool("Reuse multiplier");
       release_shared_cells = prm.get("Shared cells") == "fluid";
+      solid_retraction     = prm.get_double("Solid retraction");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
@@ -652,6 +653,26 @@ namespace Fidus
                 if (gap < 0.)
                   report(order[k], order[l], gap);
               }
+      }
+
+    // The held solid, radius a - c h at the finest cell size h, must exist.
+    if (fluid_model == FluidModel::fictitious_domain)
+      {
+        double side = upper_right[0] - lower_left[0];
+        for (unsigned int d = 1; d < dim; ++d)
+          side = std::min(side, upper_right[d] - lower_left[d]);
+        const double h = side / std::pow(2., maximum_level);
+        for (unsigned int i = 0; i < radii.size(); ++i)
+          if (radii[i] - solid_retraction * h <= 0.)
+            {
+              std::ostringstream m;
+              m << "entry 'Fluid/Solid retraction' has the value "
+                << solid_retraction << ", which leaves particle " << i
+                << " (radius " << radii[i] << ") no solid at the finest cell "
+                << "size " << h << "; allowed: values below radius / finest "
+                << "cell size = " << radii[i] / h;
+              throw InputError(m.str());
+            }
       }
   }
 } // namespace Fidus

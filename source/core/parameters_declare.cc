@@ -102,6 +102,16 @@ namespace Fidus
         "multiplier when the mesh has not changed (a warm start); otherwise "
         "from zero.");
       prm.declare_entry(
+        "Solid retraction",
+        "0",
+        Patterns::Double(0., 1.),
+        "The region held rigid for each particle is a ball of radius "
+        "a - c h, with c this value and h the finest cell size: the rigid "
+        "motion of a cut cell reaches into its fluid part, so that with "
+        "c = 0 (the seed's model) a particle acts about half a cell larger "
+        "than it is (doc/rheology.md). The contact model always uses a. "
+        "Between 0 and 1; the retracted radius must stay positive.");
+      prm.declare_entry(
         "Shared cells",
         "rigid",
         Patterns::Selection("rigid|fluid"),

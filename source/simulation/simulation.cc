@@ -154,6 +154,10 @@ namespace Fidus
         (dim == 3 ? 6. * numbers::PI * parameters.viscosity * mean_radius :
                     4. * numbers::PI * parameters.viscosity);
 
+    solid_radii = parameters.radii;
+    for (double &a : solid_radii)
+      a -= parameters.solid_retraction * box.h_finest;
+
     if (root)
       std::filesystem::create_directories(prm.output_directory);
     MPI_Barrier(comm);
@@ -589,7 +593,7 @@ namespace Fidus
         return;
       }
     solid.reinit(state.X,
-                 prm.radii,
+                 solid_radii,
                  box.lo,
                  box.hi,
                  box.is_periodic,

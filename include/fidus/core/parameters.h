@@ -86,14 +86,17 @@ namespace Fidus
     std::string           shear_rate         = "1";
 
     // Fluid
-    FluidModel   fluid_model               = FluidModel::fictitious_domain;
-    double       viscosity                 = 1.;
-    double       penalty_factor            = 1e3;
-    unsigned int velocity_degree           = 2;
-    double       rigidity_tolerance        = 1e-3;
-    unsigned int max_uzawa_iterations      = 50;
-    bool         reuse_multiplier          = true;
-    bool         release_shared_cells      = false;
+    FluidModel   fluid_model          = FluidModel::fictitious_domain;
+    double       viscosity            = 1.;
+    double       penalty_factor       = 1e3;
+    unsigned int velocity_degree      = 2;
+    double       rigidity_tolerance   = 1e-3;
+    unsigned int max_uzawa_iterations = 50;
+    bool         reuse_multiplier     = true;
+    bool         release_shared_cells = false;
+    /// The held solid of each particle is a ball of radius
+    /// a - solid_retraction * h_finest (Fluid/Solid retraction).
+    double       solid_retraction          = 0.;
     double       linear_tolerance          = 1e-6;
     unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;

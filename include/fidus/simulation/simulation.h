@@ -184,6 +184,9 @@ namespace Fidus
     const ShearRate        shear;
     const bool             fictitious;
     const unsigned int     n;
+    /// Radii of the held solid (Fluid/Solid retraction); the contact model
+    /// uses the particles' radii.
+    std::vector<double> solid_radii;
 
     Contact::Settings         contact_settings;
     Contact::ContactProjector projector;
