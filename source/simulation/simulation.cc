@@ -1,3 +1,5 @@
+#include "output_columns.h"
+
 #include <algorithm>
 #include <cmath>
 #include <deal.II/base/mpi.h>
@@ -5,8 +7,6 @@
 #include <fidus/core/input_error.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/particles/rigid_motion.h>
-#include <fidus/rheology/contact_stress.h>
-#include <fidus/simulation/progress_line.h>
 #include <fidus/simulation/simulation.h>
 #include <fidus/simulation/stop_request.h>
 #include <filesystem>
@@ -71,51 +71,6 @@ namespace Fidus
         throw RunError(what + ": " + error);
     }
 
-    const std::vector<std::string> particle_columns = {"step",
-                                                       "time",
-                                                       "id",
-                                                       "x",
-                                                       "y",
-                                                       "z",
-                                                       "ux",
-                                                       "uy",
-                                                       "uz",
-                                                       "omega_x",
-                                                       "omega_y",
-                                                       "omega_z",
-                                                       "radius",
-                                                       "stresslet_xx",
-                                                       "stresslet_xy",
-                                                       "stresslet_xz",
-                                                       "stresslet_yy",
-                                                       "stresslet_yz",
-                                                       "stresslet_zz"};
-    const std::vector<std::string> run_columns      = {"step",
-                                                       "time",
-                                                       "dt",
-                                                       "cells",
-                                                       "dofs",
-                                                       "uzawa_iterations",
-                                                       "linear_iterations",
-                                                       "rigidity_residual",
-                                                       "min_gap",
-                                                       "active_contacts",
-                                                       "glued_contacts",
-                                                       "wall_seconds",
-                                                       "remeshed",
-                                                       "contact_iterations",
-                                                       "shared_cells",
-                                                       "shared_residual"};
-
-    /// statistics.csv: the run's columns, then the stress columns.
-    std::vector<std::string>
-    statistics_columns()
-    {
-      std::vector<std::string> c = run_columns;
-      for (const std::string &name : SuspensionStress::column_names())
-        c.push_back(name);
-      return c;
-    }
   } // namespace
 
 
@@ -320,11 +275,11 @@ namespace Fidus
     state.initialise(prm.positions);
     particles_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
-                                  particle_columns,
+                                  OutputColumns::particle_columns(),
                                   root);
     statistics_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                  statistics_columns(),
+                                  OutputColumns::statistics_columns(),
                                   root);
     particle_output =
       std::make_unique<ParticleOutput>(prm.output_directory,
@@ -363,12 +318,12 @@ namespace Fidus
     failure_stops_every_rank(comm, "resuming from " + resume->folder, [&]() {
       particles_csv =
         std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
-                                    particle_columns,
+                                    OutputColumns::particle_columns(),
                                     root,
                                     state.step);
       statistics_csv =
         std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
-                                    statistics_columns(),
+                                    OutputColumns::statistics_columns(),
                                     root,
                                     state.step);
       particle_output =
@@ -690,174 +645,6 @@ namespace Fidus
 
 
   template <int dim>
-  void
-  Simulation<dim>::measure_stress()
-  {
-    TimerOutput::Scope scope(*timer, "stress");
-    const double       g = shear(state.time);
-    if (fictitious)
-      hydrodynamic = hydrodynamic_stress->compute(*solver, solid);
-    else
-      {
-        // Free-draining particles carry no stress of their own: the
-        // undisturbed shear flow's viscous stress.
-        hydrodynamic        = typename HydrodynamicStress<dim>::Result();
-        hydrodynamic.volume = 1.;
-        for (unsigned int d = 0; d < dim; ++d)
-          hydrodynamic.volume *= box.hi[d] - box.lo[d];
-        hydrodynamic.total[0][1]            = prm.viscosity * g;
-        hydrodynamic.mean_strain_rate[0][1] = 0.5 * g;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
-            hydrodynamic.wall[a][b] = std::numeric_limits<double>::quiet_NaN();
-        hydrodynamic.stresslets.assign(n, SymmetricTensor<2, 3>());
-      }
-    const SymmetricTensor<2, 3> contact =
-      contact_stress(projector.constraints(),
-                     prm.radii,
-                     contact_drag,
-                     hydrodynamic.volume);
-    stress = SuspensionStress::combine(hydrodynamic.total,
-                                       hydrodynamic.particle,
-                                       hydrodynamic.wall[0][1],
-                                       contact,
-                                       prm.viscosity,
-                                       g,
-                                       dim);
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::write_output(const double dt)
-  {
-    TimerOutput::Scope scope(*timer, "output");
-    const RunState    &s = state;
-    for (unsigned int i = 0; i < n; ++i)
-      particles_csv->write_row({double(s.step),
-                                s.time,
-                                double(i),
-                                s.X[i][0],
-                                s.X[i][1],
-                                s.X[i][2],
-                                s.U[i][0],
-                                s.U[i][1],
-                                s.U[i][2],
-                                s.W[i][0],
-                                s.W[i][1],
-                                s.W[i][2],
-                                prm.radii[i],
-                                hydrodynamic.stresslets[i][0][0],
-                                hydrodynamic.stresslets[i][0][1],
-                                hydrodynamic.stresslets[i][0][2],
-                                hydrodynamic.stresslets[i][1][1],
-                                hydrodynamic.stresslets[i][1][2],
-                                hydrodynamic.stresslets[i][2][2]});
-
-    double gap = std::numeric_limits<double>::infinity();
-    if (n > 0)
-      gap = Contact::ContactProjector::minimum_gap(s.X,
-                                                   prm.radii,
-                                                   box.walls,
-                                                   dim,
-                                                   n <= 200 ?
-                                                     1e3 * box.smallest_side :
-                                                     4. * box.a_max,
-                                                   box.periods);
-    RunTotals &totals = state.totals;
-    totals.min_gap    = std::min(totals.min_gap, gap);
-    if (n >= 2)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          d2 +=
-            std::pow(Contact::PairSearch::minimum_image(s.X[1][d] - s.X[0][d],
-                                                        box.periods[d]),
-                     2);
-        totals.min_normalised_distance =
-          std::min(totals.min_normalised_distance,
-                   std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
-      }
-    totals.max_uzawa_iterations =
-      std::max(totals.max_uzawa_iterations, fluid_stats.uzawa_iterations);
-    totals.max_linear_iterations =
-      std::max(totals.max_linear_iterations, fluid_stats.linear_iterations);
-    totals.max_rigidity_residual =
-      std::max(totals.max_rigidity_residual, fluid_stats.rigidity_residual);
-    totals.max_shared_cells =
-      std::max(totals.max_shared_cells, fluid_stats.shared_cells);
-    totals.max_shared_residual =
-      std::max(totals.max_shared_residual, fluid_stats.shared_residual);
-
-    const double cells =
-      fictitious ? double(tria->n_global_active_cells()) : 0.;
-    const double        dofs = fictitious ? double(solver->n_dofs()) : 0.;
-    std::vector<double> row  = {double(s.step),
-                                s.time,
-                                dt,
-                                cells,
-                                dofs,
-                                double(fluid_stats.uzawa_iterations),
-                                double(fluid_stats.linear_iterations),
-                                fluid_stats.rigidity_residual,
-                               std::isfinite(gap) ? gap : 0.,
-                                double(n_active),
-                                double(n_glued),
-                                elapsed_wall_seconds(),
-                                double(remeshed),
-                                double(contact_iterations),
-                                double(fluid_stats.shared_cells),
-                                fluid_stats.shared_residual};
-    for (const double v : stress.values())
-      row.push_back(v);
-    statistics_csv->write_row(row);
-
-    if (field_output && s.step % prm.field_output_interval == 0)
-      field_output->write(*solver, solid, s.step, s.time);
-    if (prm.particle_output_interval > 0 &&
-        s.step % prm.particle_output_interval == 0)
-      particle_output->write(s.step,
-                             s.time,
-                             s.X,
-                             prm.radii,
-                             s.U,
-                             s.W,
-                             projector.glued_count_per_particle(n));
-
-    // Progress: every 'Progress interval' steps, or by wall clock (the
-    // first and the last step always).
-    const double now = wall_clock.wall_time();
-    const bool   due = prm.progress_interval > 0 ?
-                         s.step % prm.progress_interval == 0 :
-                         last_progress_wall < 0. ||
-                         now - last_progress_wall >= prm.progress_wall_interval;
-    if (due || finished())
-      {
-        last_progress_wall = now;
-        ProgressLine line;
-        line.step              = s.step;
-        line.time              = s.time;
-        line.dt                = dt;
-        line.gap               = std::isfinite(gap) ? gap : 0.;
-        line.fluid             = fictitious;
-        line.cells             = fictitious ? tria->n_global_active_cells() : 0;
-        line.uzawa             = fluid_stats.uzawa_iterations;
-        line.fgmres            = fluid_stats.linear_iterations;
-        line.rigidity_residual = fluid_stats.rigidity_residual;
-        line.shared            = fluid_stats.shared_cells;
-        line.active            = n_active;
-        line.glued             = n_glued;
-        line.eta               = s.time > 0 ?
-                                   elapsed_wall_seconds() / s.time * (prm.end_time - s.time) :
-                                   0.;
-        pcout << line.text() << std::endl;
-      }
-  }
-
-
-
-  template <int dim>
   bool
   Simulation<dim>::checkpoint_or_stop()
   {
@@ -953,36 +740,6 @@ namespace Fidus
     pcout << "checkpoint " << final_folder << ": " << bytes << " bytes, "
           << std::fixed << std::setprecision(3) << clock.wall_time() << " s"
           << std::defaultfloat << std::endl;
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::report_exact_solution_errors()
-  {
-    const auto   errors = solver->compute_errors(*exact, solid, true);
-    const double g      = shear(0.);
-    double       werr = 0, uerr = 0;
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        const double w_exact = d == 2 ? -0.5 * g : 0.;
-        werr += std::pow(state.W[0][d] - w_exact, 2);
-        uerr += std::pow(state.U[0][d], 2);
-      }
-    RunSummary &e       = exact_errors;
-    e.u_l2_error        = errors.u_l2;
-    e.u_h1_error        = errors.u_h1;
-    e.u_l2_norm         = errors.u_l2_norm;
-    e.omega_error       = std::sqrt(werr) / std::abs(0.5 * g);
-    e.translation_error = std::sqrt(uerr) / std::abs(g * prm.radii[0]);
-    pcout << std::scientific << std::setprecision(4)
-          << "exact rigid inclusion: cells " << tria->n_global_active_cells()
-          << ", dofs " << solver->n_dofs() << ", L2 error of u (fluid) "
-          << errors.u_l2 << ", L2 norm of exact u (fluid) " << errors.u_l2_norm
-          << ", H1 error of u (fluid) " << errors.u_h1
-          << ", relative omega error " << e.omega_error << ", |U|/(g a) "
-          << e.translation_error << std::defaultfloat << std::endl;
   }
 
 

@@ -56,10 +56,27 @@ EOF2
 rows() { echo $(($(wc -l < "$1") - 1)); }
 
 # Same rows and values, wall clock (column 12 of statistics.csv) excepted.
+# The stress columns (particles.csv 14-19, statistics.csv 17-25) to 1e-10
+# relative to the row's largest stress: a checkpoint does not hold the
+# pressure's constant mode of the last solve, and the normal stresses carry
+# it at the level of rounding (the mean pressure cancels between them in
+# exact arithmetic, doc/restart.md).
+same_stress() {
+  paste -d, <(cut -d, -f"$3" "$1") <(cut -d, -f"$3" "$2") | awk -F, '
+    NR > 1 { n = NF / 2; s = 0; d = 0
+             for (c = 1; c <= n; ++c) {
+               a = $c; if (a < 0) a = -a; if (a > s) s = a
+               e = $c - $(c + n); if (e < 0) e = -e; if (e > d) d = e }
+             if (d > 1e-10 * s) bad = 1 }
+    END { exit bad }'
+}
 same_output() {
-  cmp -s "$1/particles.csv" "$2/particles.csv" &&
-    cmp -s <(cut -d, -f1-11,13- "$1/statistics.csv") \
-           <(cut -d, -f1-11,13- "$2/statistics.csv")
+  cmp -s <(cut -d, -f1-13 "$1/particles.csv") \
+         <(cut -d, -f1-13 "$2/particles.csv") &&
+    cmp -s <(cut -d, -f1-11,13-16 "$1/statistics.csv") \
+           <(cut -d, -f1-11,13-16 "$2/statistics.csv") &&
+    same_stress "$1/particles.csv" "$2/particles.csv" 14-19 &&
+    same_stress "$1/statistics.csv" "$2/statistics.csv" 17-25
 }
 
 # Every step once, in order.
@@ -137,8 +154,9 @@ fi
 scene other 3 "  set Checkpoint interval = 4" > other.prm
 status=$(run_and_signal other other.prm INT)
 "${mpirun_cmd[@]}" "$fidus" --resume other.prm > other.resume.stdout 2>&1 || fail "resume 1 -> 2 ranks"
-largest=$(paste -d, ref1/particles.csv other/particles.csv | awk -F, '
-  NR > 1 { for (c = 4; c <= 5; ++c) { d = $c - $(c + 13); if (d < 0) d = -d; if (d > m) m = d } }
+nc=$(head -1 ref1/particles.csv | awk -F, '{ print NF }')
+largest=$(paste -d, ref1/particles.csv other/particles.csv | awk -F, -v nc="$nc" '
+  NR > 1 { for (c = 4; c <= 5; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
   END { printf "%.3e", m / 0.05 }')
 if [ "$status" = 130 ] && no_duplicate_steps other && [ "$(rows other/statistics.csv)" = 31 ] \
    && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-4) }'; then

@@ -1,0 +1,68 @@
+#ifndef fidus_simulation_output_columns_h
+#define fidus_simulation_output_columns_h
+
+// The column names of particles.csv and statistics.csv (fixed by the
+// interface; more may be appended, none renamed), shared by the files of
+// Simulation that open and write them.
+
+#include <fidus/rheology/suspension_stress.h>
+#include <string>
+#include <vector>
+
+namespace Fidus
+{
+  namespace OutputColumns
+  {
+    /// particles.csv.
+    inline std::vector<std::string>
+    particle_columns()
+    {
+      return {"step",
+              "time",
+              "id",
+              "x",
+              "y",
+              "z",
+              "ux",
+              "uy",
+              "uz",
+              "omega_x",
+              "omega_y",
+              "omega_z",
+              "radius",
+              "stresslet_xx",
+              "stresslet_xy",
+              "stresslet_xz",
+              "stresslet_yy",
+              "stresslet_yz",
+              "stresslet_zz"};
+    }
+
+    /// statistics.csv: the run's columns, then the stress columns.
+    inline std::vector<std::string>
+    statistics_columns()
+    {
+      std::vector<std::string> c = {"step",
+                                    "time",
+                                    "dt",
+                                    "cells",
+                                    "dofs",
+                                    "uzawa_iterations",
+                                    "linear_iterations",
+                                    "rigidity_residual",
+                                    "min_gap",
+                                    "active_contacts",
+                                    "glued_contacts",
+                                    "wall_seconds",
+                                    "remeshed",
+                                    "contact_iterations",
+                                    "shared_cells",
+                                    "shared_residual"};
+      for (const std::string &name : SuspensionStress::column_names())
+        c.push_back(name);
+      return c;
+    }
+  } // namespace OutputColumns
+} // namespace Fidus
+
+#endif
