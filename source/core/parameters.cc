@@ -467,6 +467,25 @@ namespace Fidus
 
 
 
+  double
+  Parameters::smallest_side() const
+  {
+    double side = upper_right[0] - lower_left[0];
+    for (unsigned int d = 1; d < dimension; ++d)
+      side = std::min(side, upper_right[d] - lower_left[d]);
+    return side;
+  }
+
+
+
+  double
+  Parameters::finest_cell_size() const
+  {
+    return smallest_side() / std::pow(2., maximum_level);
+  }
+
+
+
   void
   Parameters::check_scene() const
   {
@@ -658,10 +677,7 @@ namespace Fidus
     // The held solid, radius a - c h at the finest cell size h, must exist.
     if (fluid_model == FluidModel::fictitious_domain)
       {
-        double side = upper_right[0] - lower_left[0];
-        for (unsigned int d = 1; d < dim; ++d)
-          side = std::min(side, upper_right[d] - lower_left[d]);
-        const double h = side / std::pow(2., maximum_level);
+        const double h = finest_cell_size();
         for (unsigned int i = 0; i < radii.size(); ++i)
           if (radii[i] - solid_retraction * h <= 0.)
             {

@@ -144,6 +144,10 @@ namespace Fidus
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
     make_constraints(Functions::ZeroFunction<dim>(dim + 1));
+    conforming_constraints.clear();
+    conforming_constraints.reinit(locally_relevant_dofs);
+    add_conforming_constraints(conforming_constraints);
+    conforming_constraints.close();
     cells = canonical_cell_order(dof_handler);
 
     // The system couples everything but pressure with pressure; the
@@ -212,17 +216,27 @@ namespace Fidus
 
   template <int dim>
   void
-  StokesSolver<dim>::make_constraints(const Function<dim> &boundary_velocity)
+  StokesSolver<dim>::add_conforming_constraints(
+    AffineConstraints<double> &c) const
   {
-    constraints.clear();
-    constraints.reinit(locally_relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    DoFTools::make_hanging_node_constraints(dof_handler, c);
     for (const unsigned int d : periodic_directions)
       DoFTools::make_periodicity_constraints(dof_handler,
                                              2 * d,
                                              2 * d + 1,
                                              d,
-                                             constraints);
+                                             c);
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::make_constraints(const Function<dim> &boundary_velocity)
+  {
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    add_conforming_constraints(constraints);
     const FEValuesExtractors::Vector velocities(0);
     for (const types::boundary_id id : dirichlet_ids)
       VectorTools::interpolate_boundary_values(dof_handler,

@@ -1,6 +1,5 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature.h>
-#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -51,10 +50,8 @@ namespace Fidus
 
   template <int dim>
   HydrodynamicStress<dim>::HydrodynamicStress(
-    const std::vector<unsigned int>    &periodic_directions,
     const std::set<types::boundary_id> &dirichlet_ids)
-    : periodic_directions(periodic_directions)
-    , dirichlet_ids(dirichlet_ids)
+    : dirichlet_ids(dirichlet_ids)
   {
     for (unsigned int b = 0; b < dim; ++b)
       if (dirichlet_ids.count(2 * b) > 0 && dirichlet_ids.count(2 * b + 1) > 0)
@@ -96,22 +93,15 @@ namespace Fidus
     // The residual lives in the conforming space: hanging nodes and
     // periodicity, but no imposed velocity (the wall DoFs are where the
     // residual is wanted).
-    AffineConstraints<double> constraints;
-    IndexSet                  relevant;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    constraints.reinit(relevant);
-    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    for (const unsigned int d : periodic_directions)
-      DoFTools::make_periodicity_constraints(dof_handler,
-                                             2 * d,
-                                             2 * d + 1,
-                                             d,
-                                             constraints);
-    constraints.close();
+    const AffineConstraints<double> &constraints =
+      solver.get_conforming_constraints();
     // Writable ghost entries: cells of this rank add to the wall DoFs of
     // others.
     TrilinosWrappers::MPI::Vector residual;
-    residual.reinit(dof_handler.locally_owned_dofs(), relevant, comm, true);
+    residual.reinit(dof_handler.locally_owned_dofs(),
+                    constraints.get_local_lines(),
+                    comm,
+                    true);
     // Locally owned DoFs with imposed velocity: component and position.
     std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>>
       wall_dofs;

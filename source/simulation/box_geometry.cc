@@ -18,10 +18,8 @@ namespace Fidus
         a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
         a_max = *std::max_element(prm.radii.begin(), prm.radii.end());
       }
-    smallest_side = hi[0] - lo[0];
-    for (unsigned int d = 1; d < dim; ++d)
-      smallest_side = std::min(smallest_side, hi[d] - lo[d]);
-    h_finest = smallest_side / std::pow(2., prm.maximum_level);
+    smallest_side = prm.smallest_side();
+    h_finest      = prm.finest_cell_size();
     // The coarse cells of create_box_mesh: each side divided into
     // round(side / smallest side) parts, then refined globally.
     double coarse_diameter2 = 0;

@@ -153,8 +153,7 @@ namespace Fidus
     ss.verbose                   = prm.verbosity == Verbosity::verbose;
     solver = std::make_unique<StokesSolver<dim>>(*tria, ss);
     hydrodynamic_stress =
-      std::make_unique<HydrodynamicStress<dim>>(box.periodic,
-                                                box.dirichlet_ids);
+      std::make_unique<HydrodynamicStress<dim>>(box.dirichlet_ids);
 
     typename MeshRefiner<dim>::Settings ms;
     ms.minimum_level = prm.minimum_level;

@@ -65,7 +65,7 @@ main(int argc, char **argv)
                {0.12, 0.1},
                Point<2>(0., 0.),
                Point<2>(1., 1.));
-  const Fidus::HydrodynamicStress<2> stress({}, {0, 1, 2, 3});
+  const Fidus::HydrodynamicStress<2> stress({0, 1, 2, 3});
 
   // Rigid rotation with angular velocity 1: no stress at all.
   solver.solve(solid, LinearVelocity(-1., 0., 1., 0.));

@@ -65,6 +65,15 @@ namespace Fidus
     void
     parse(dealii::ParameterHandler &prm, const std::string &input_name);
 
+    /// The shortest side of the box.
+    double
+    smallest_side() const;
+
+    /// Edge of a cell at the Maximum level (the box mesh has square cells
+    /// whose coarse size is the shortest side).
+    double
+    finest_cell_size() const;
+
     /// Check the scene as a whole (called by parse()).
     void
     check_scene() const;

@@ -156,6 +156,18 @@ namespace Fidus
       return settings;
     }
 
+    /**
+     * The hanging-node and periodicity constraints of the current mesh,
+     * without the imposed velocity (closed, on the locally relevant DoFs):
+     * the conforming space, for residuals at DoFs with imposed velocity.
+     * Built by setup_dofs().
+     */
+    const AffineConstraints<double> &
+    get_conforming_constraints() const
+    {
+      return conforming_constraints;
+    }
+
     /// The finite element.
     const FESystem<dim> &
     get_fe() const
@@ -243,6 +255,9 @@ namespace Fidus
                          bool multiplier_is_warm_start);
 
   private:
+    /// Add the hanging-node and periodicity constraints to @p c.
+    void
+    add_conforming_constraints(AffineConstraints<double> &c) const;
     /// Hanging nodes, periodicity and the boundary velocity.
     void
     make_constraints(const Function<dim> &boundary_velocity);
@@ -320,6 +335,8 @@ namespace Fidus
     std::vector<IndexSet>        owned_partitioning, relevant_partitioning;
     IndexSet                     locally_relevant_dofs;
     AffineConstraints<double>    constraints;
+    /// Hanging nodes and periodicity only (get_conforming_constraints()).
+    AffineConstraints<double> conforming_constraints;
 
     TrilinosWrappers::BlockSparseMatrix system_matrix;
     TrilinosWrappers::BlockSparseMatrix preconditioner_matrix;

@@ -66,11 +66,11 @@ namespace Fidus
     };
 
     /**
-     * @p periodic_directions and @p dirichlet_ids as given to
-     * StokesSolver::setup_dofs(): they decide which walls carry a traction.
+     * @p dirichlet_ids as given to StokesSolver::setup_dofs(): the faces
+     * with imposed velocity, which decide which walls carry a traction.
      */
-    HydrodynamicStress(const std::vector<unsigned int>    &periodic_directions,
-                       const std::set<types::boundary_id> &dirichlet_ids);
+    explicit HydrodynamicStress(
+      const std::set<types::boundary_id> &dirichlet_ids);
 
     /**
      * The stresses of the solver's last solve with the solid @p solid (the
@@ -82,7 +82,6 @@ namespace Fidus
             const SolidIndicator<dim> &solid) const;
 
   private:
-    std::vector<unsigned int>    periodic_directions;
     std::set<types::boundary_id> dirichlet_ids;
     /// Directions b with imposed velocity on both faces 2b, 2b + 1.
     std::vector<unsigned int> wall_directions;
