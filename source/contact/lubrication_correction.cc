@@ -114,7 +114,8 @@ namespace Fidus::Contact
   LubricationCorrection::correct(const std::vector<Vec3>   &positions,
                                  const std::vector<double> &radii,
                                  const std::vector<Vec3>   &u_star,
-                                 std::vector<Vec3>         &u)
+                                 std::vector<Vec3>         &u,
+                                 const double               dt)
   {
     const std::size_t  n   = positions.size();
     const unsigned int dim = settings.dimension;
@@ -262,7 +263,8 @@ namespace Fidus::Contact
         u[i][d] = x[3 * i + d];
 
     // The normal force each bond adds, positive apart: R w - Rres w*, with
-    // w = n.(u_i - u_j) the closing speed.
+    // w = n.(u_i - u_j) the closing speed (before the step correction
+    // below, which is a matter of time integration, not a force).
     for (LubricationBond &b : bond)
       {
         double w = 0., w_star = 0.;
@@ -274,6 +276,38 @@ namespace Fidus::Contact
           }
         b.force = b.r_true * w - b.r_resolved * w_star;
       }
+    // The Euler step's tangential opening of each pair, taken off its
+    // normal velocity and shared in proportion to the mobilities 1/zeta
+    // (computed from the lubricated velocities of all pairs at once).
+    if (dt > 0.)
+      {
+        std::vector<Vec3> du(n, Vec3{{0., 0., 0.}});
+        for (const LubricationBond &b : bond)
+          {
+            if (b.j == LubricationBond::no_particle)
+              continue; // a particle sliding along a plane keeps its gap
+            Vec3   w{{0., 0., 0.}}, r_new{{0., 0., 0.}};
+            double wn = 0.;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                w[d] = u[b.j][d] - u[b.i][d];
+                wn += b.n[d] * w[d];
+                r_new[d] = b.length * b.n[d] + dt * w[d];
+              }
+            const double opening =
+              std::sqrt(dot(r_new, r_new)) - b.length - dt * wn;
+            const double zi = zeta[b.i], zj = zeta[b.j];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                du[b.i][d] += opening / dt * zj / (zi + zj) * b.n[d];
+                du[b.j][d] -= opening / dt * zi / (zi + zj) * b.n[d];
+              }
+          }
+        for (std::size_t i = 0; i < n; ++i)
+          for (unsigned int d = 0; d < dim; ++d)
+            u[i][d] += du[i][d];
+      }
+
     return stat;
   }
 } // namespace Fidus::Contact

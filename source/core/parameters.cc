@@ -206,6 +206,8 @@ namespace Fidus
       reuse_multiplier     = prm.get_bool("Reuse multiplier");
       release_shared_cells = prm.get("Shared cells") == "fluid";
       solid_retraction     = prm.get_double("Solid retraction");
+      lubrication          = prm.get_bool("Lubrication correction");
+      lubrication_range    = prm.get_double("Lubrication range");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
@@ -423,6 +425,7 @@ namespace Fidus
       dual_solver         = prm.get("Dual solver");
       alert_distance      = prm.get_double("Alert distance");
       drag_coefficient    = prm.get_double("Drag coefficient");
+      roughness           = prm.get_double("Roughness");
     }
     prm.leave_subsection();
 
@@ -672,6 +675,16 @@ namespace Fidus
                 if (gap < 0.)
                   report(order[k], order[l], gap);
               }
+      }
+
+    if (lubrication && !(lubrication_range > 0.))
+      {
+        std::ostringstream m;
+        m << "entry 'Fluid/Lubrication range' has the value "
+          << lubrication_range
+          << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
+          << "Lubrication correction' is true";
+        throw InputError(m.str());
       }
 
     // The held solid, radius a - c h at the finest cell size h, must exist.

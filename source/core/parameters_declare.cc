@@ -112,6 +112,23 @@ namespace Fidus
         "than it is (doc/rheology.md). The contact model always uses a. "
         "Between 0 and 1; the retracted radius must stay positive.");
       prm.declare_entry(
+        "Lubrication correction",
+        "false",
+        Patterns::Bool(),
+        "Add the squeeze resistance of the gaps the mesh cannot resolve "
+        "(particle pairs and particle-wall gaps below 'Lubrication range'), "
+        "implicitly in the particle velocities, minus the part the mesh "
+        "carries (doc/fluid.md). Meant with 'Shared cells = fluid', where "
+        "close pairs are no longer held as one rigid doublet. false keeps "
+        "the seed's model.");
+      prm.declare_entry(
+        "Lubrication range",
+        "1",
+        Patterns::Double(0.),
+        "Gap, in finest cell sizes, below which the lubrication correction "
+        "acts and above which the mesh is taken to resolve the squeeze "
+        "flow, > 0.");
+      prm.declare_entry(
         "Shared cells",
         "rigid",
         Patterns::Selection("rigid|fluid"),
@@ -325,14 +342,24 @@ namespace Fidus
                         "smallest radius, enter the constraints (never less "
                         "than a safe multiple of dt * max |u|), >= 0.");
       prm.declare_entry(
+        "Roughness",
+        "5e-3",
+        Patterns::Double(0., 1.),
+        "Asperity height relative to the smaller radius of a pair (the "
+        "radius for a wall): with 'Fluid/Lubrication correction', gaps "
+        "below it count as this gap, so that the squeeze resistance stays "
+        "finite and the contact model takes over. In [0, 1).");
+      prm.declare_entry(
         "Drag coefficient",
         "0",
         Patterns::Double(0.),
         "Force per unit velocity that turns the contact correction "
         "u - u* of a particle into a contact force, for the contact "
         "stress in statistics.csv (the projection itself does not use "
-        "it); 0: the Stokes drag of an isolated particle of the mean "
-        "radius, 6 pi eta a in 3D and 4 pi eta per unit length in 2D. "
+        "it), and the drag of a particle in the lubrication correction; "
+        "0: the Stokes drag of an isolated particle, 6 pi eta a in 3D "
+        "(a: the mean radius for the stress, each particle's own in the "
+        "lubrication) and 4 pi eta per unit length in 2D. "
         ">= 0.");
     }
     prm.leave_subsection();

@@ -26,10 +26,11 @@ namespace Fidus
                             const dealii::SymmetricTensor<2, 3> &contact,
                             const double                         eta_f,
                             const double                         shear_rate,
-                            const unsigned int                   dim)
+                            const unsigned int                   dim,
+                            const dealii::SymmetricTensor<2, 3> &lubrication)
   {
     const double nan   = std::numeric_limits<double>::quiet_NaN();
-    const auto   total = hydrodynamic + contact;
+    const auto   total = hydrodynamic + contact + lubrication;
     // Plane strain in 2D: the contact stress has no z part, the
     // hydrodynamic one carries -p in zz.
     const double scale = shear_rate != 0. ? 1. / (eta_f * shear_rate) : nan;
@@ -39,11 +40,13 @@ namespace Fidus
     s.relative_viscosity         = total[0][1] * scale;
     s.normal_stress_difference_1 = total[0][0] - total[1][1];
     s.normal_stress_difference_2 = total[1][1] - total[2][2];
-    s.particle_pressure          = pressure_of(particle + contact, dim);
-    s.contact_relative_viscosity = contact[0][1] * scale;
-    s.wall_shear_stress          = wall_xy;
-    s.hydrodynamic_shear_stress  = hydrodynamic[0][1];
-    s.contact_particle_pressure  = pressure_of(contact, dim);
+    s.particle_pressure = pressure_of(particle + contact + lubrication, dim);
+    s.contact_relative_viscosity     = contact[0][1] * scale;
+    s.wall_shear_stress              = wall_xy;
+    s.hydrodynamic_shear_stress      = hydrodynamic[0][1];
+    s.contact_particle_pressure      = pressure_of(contact, dim);
+    s.lubrication_relative_viscosity = lubrication[0][1] * scale;
+    s.lubrication_particle_pressure  = pressure_of(lubrication, dim);
     return s;
   }
 
@@ -60,7 +63,9 @@ namespace Fidus
             "contact_relative_viscosity",
             "wall_shear_stress",
             "hydrodynamic_shear_stress",
-            "contact_particle_pressure"};
+            "contact_particle_pressure",
+            "lubrication_relative_viscosity",
+            "lubrication_particle_pressure"};
   }
 
 
@@ -76,6 +81,8 @@ namespace Fidus
             contact_relative_viscosity,
             wall_shear_stress,
             hydrodynamic_shear_stress,
-            contact_particle_pressure};
+            contact_particle_pressure,
+            lubrication_relative_viscosity,
+            lubrication_particle_pressure};
   }
 } // namespace Fidus

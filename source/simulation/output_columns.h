@@ -38,7 +38,8 @@ namespace Fidus
               "stresslet_zz"};
     }
 
-    /// statistics.csv: the run's columns, then the stress columns.
+    /// statistics.csv: the run's columns, the stress columns, then the
+    /// lubrication count.
     inline std::vector<std::string>
     statistics_columns()
     {
@@ -60,6 +61,9 @@ namespace Fidus
                                     "shared_residual"};
       for (const std::string &name : SuspensionStress::column_names())
         c.push_back(name);
+      // Particle-particle and particle-wall gaps that the lubrication
+      // correction acted on in this step.
+      c.push_back("lubrication_pairs");
       return c;
     }
   } // namespace OutputColumns

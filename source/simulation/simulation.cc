@@ -109,6 +109,20 @@ namespace Fidus
         (dim == 3 ? 6. * numbers::PI * parameters.viscosity * mean_radius :
                     4. * numbers::PI * parameters.viscosity);
 
+    if (parameters.lubrication)
+      {
+        Contact::LubricationSettings ls;
+        ls.dimension = dim;
+        ls.viscosity = parameters.viscosity;
+        ls.range = parameters.lubrication_range * parameters.finest_cell_size();
+        ls.roughness        = parameters.roughness;
+        ls.nothing_resolved = !fictitious;
+        ls.drag             = parameters.drag_coefficient;
+        lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
+        lubrication->set_walls(box.walls);
+        lubrication->set_periodicity(box.periods);
+      }
+
     solid_radii = parameters.radii;
     for (double &a : solid_radii)
       a -= parameters.solid_retraction * box.h_finest;
@@ -198,6 +212,7 @@ namespace Fidus
           {
             const double dt = choose_time_step();
             extrapolate_velocities(dt);
+            add_lubrication(dt);
             project_onto_admissible_set(dt);
             advance_particles(dt);
             predict_velocities();
@@ -418,6 +433,41 @@ namespace Fidus
 
   template <int dim>
   void
+  Simulation<dim>::add_lubrication(const double dt)
+  {
+    if (!lubrication)
+      return;
+    TimerOutput::Scope scope(*timer, "lubrication");
+    const unsigned int next = state.step + 1;
+    try
+      {
+        lubrication_stats =
+          lubrication->correct(state.X, prm.radii, u_star, u_lubricated, dt);
+      }
+    catch (const Contact::ContactError &e)
+      {
+        throw RunError(std::string(e.what()) + " (at step " +
+                       std::to_string(next) +
+                       ", t = " + std::to_string(state.time) + ")");
+      }
+    if (!lubrication_stats.converged)
+      {
+        std::ostringstream m;
+        m << "the lubrication correction at step " << next
+          << " did not converge: relative residual "
+          << lubrication_stats.residual << " after "
+          << lubrication_stats.iterations << " CG iterations";
+        warnings.warn("lubrication not converged",
+                      m.str(),
+                      next,
+                      lubrication_stats.residual);
+      }
+  }
+
+
+
+  template <int dim>
+  void
   Simulation<dim>::project_onto_admissible_set(const double dt)
   {
     TimerOutput::Scope scope(*timer, "contact");
@@ -425,7 +475,11 @@ namespace Fidus
     try
       {
         const Contact::ProjectionStatistics cst =
-          projector.project(state.X, prm.radii, u_star, dt, u_corrected);
+          projector.project(state.X,
+                            prm.radii,
+                            lubrication ? u_lubricated : u_star,
+                            dt,
+                            u_corrected);
         n_active           = cst.n_active;
         n_glued            = cst.n_glued;
         contact_iterations = cst.iterations;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fidus/rheology/contact_stress.h>
+#include <fidus/rheology/lubrication_stress.h>
 #include <fidus/simulation/progress_line.h>
 #include <fidus/simulation/simulation.h>
 #include <iomanip>
@@ -40,13 +41,18 @@ namespace Fidus
                      prm.radii,
                      contact_drag,
                      hydrodynamic.volume);
+    const SymmetricTensor<2, 3> lubricated =
+      lubrication ?
+        lubrication_stress(lubrication->bonds(), hydrodynamic.volume) :
+        SymmetricTensor<2, 3>();
     stress = SuspensionStress::combine(hydrodynamic.total,
                                        hydrodynamic.particle,
                                        hydrodynamic.wall[0][1],
                                        contact,
                                        prm.viscosity,
                                        g,
-                                       dim);
+                                       dim,
+                                       lubricated);
   }
 
 
@@ -134,6 +140,8 @@ namespace Fidus
                                 fluid_stats.shared_residual};
     for (const double v : stress.values())
       row.push_back(v);
+    row.push_back(
+      double(lubrication_stats.n_pairs + lubrication_stats.n_wall_pairs));
     statistics_csv->write_row(row);
 
     if (field_output && s.step % prm.field_output_interval == 0)

@@ -26,6 +26,10 @@
 //    against the exact solution of dh/dt = -v (zeta + 2 Rres) / (zeta + 2 R(h))
 //    falls at first order (ratio of errors at dt and dt/2 in [1.7, 2.3]).
 // i. Non-finite input throws ContactError.
+// j. A close pair turning as a doublet (relative velocity perpendicular to
+//    the line of centres): an explicit Euler step with the velocities of
+//    correct(..., dt) changes the distance by o^2 / l (fourth order in dt)
+//    only, where the uncorrected step opens it by o = |w|^2 dt^2 / 2l.
 
 #include "test_tools.h"
 
@@ -408,6 +412,41 @@ namespace
       }
     check("i. a NaN velocity is reported with the particle", thrown);
   }
+  void
+  test_doublet_step()
+  {
+    for (const unsigned dim : {2u, 3u})
+      {
+        LubricationSettings     s = settings_of(dim, 0.02);
+        LubricationCorrection   lub(s);
+        const double            a = 0.1, h = 1e-3, dt = 0.1, l = 2 * a + h;
+        const std::vector<Vec3> x = {{{0.2, 0.3, 0.1}}, {{0.2 + l, 0.3, 0.1}}};
+        const std::vector<double> radii = {a, a};
+        const std::vector<Vec3> u_star  = {{{0., -0.05, 0.}}, {{0., 0.05, 0.}}};
+        std::vector<Vec3>       u0, u1;
+        lub.correct(x, radii, u_star, u0);
+        lub.correct(x, radii, u_star, u1, dt);
+        const auto distance = [&](const std::vector<Vec3> &u) {
+          double r2 = 0.;
+          for (unsigned d = 0; d < 3; ++d)
+            {
+              const double r = x[1][d] + dt * u[1][d] - x[0][d] - dt * u[0][d];
+              r2 += r * r;
+            }
+          return std::sqrt(r2);
+        };
+        const double opening = 0.1 * 0.1 * dt * dt / (2 * l);
+        const bool   ok =
+          std::abs(distance(u0) - l - opening) < 0.01 * opening &&
+          std::abs(distance(u1) - l) < 1.01 * opening * opening / l;
+        if (!ok)
+          std::cout << "  distances " << distance(u0) - l << " "
+                    << distance(u1) - l << std::endl;
+        check("j. " + std::to_string(dim) +
+                "D doublet: the Euler step keeps the distance with dt",
+              ok);
+      }
+  }
 } // namespace
 
 int
@@ -422,5 +461,6 @@ main()
   test_roughness();
   test_squeeze_order();
   test_bad_input();
+  test_doublet_step();
   return TestTools::failures() != 0;
 }

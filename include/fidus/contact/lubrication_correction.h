@@ -142,12 +142,21 @@ namespace Fidus::Contact
      * sub-grid squeeze resistance (u = u* where no pair is closer than the
      * range). Only translations change. Throws ContactError if the positions
      * or velocities are not finite.
+     *
+     * With @p dt > 0 the velocities are meant for an explicit Euler step of
+     * that size, and each close pair's normal velocity is then lowered by
+     * the gap that the step would open through their relative tangential
+     * motion alone, (|r + dt w| - |r| - dt n.w) / dt, so that the gap
+     * changes by dt times the lubricated normal speed. Without that, a pair
+     * that turns as a doublet ratchets its gap open by |w_t|^2 dt^2 / 2l per
+     * step, which the lubrication then keeps from closing (doc/fluid.md).
      */
     LubricationStatistics
     correct(const std::vector<Vec3>   &positions,
             const std::vector<double> &radii,
             const std::vector<Vec3>   &u_star,
-            std::vector<Vec3>         &u);
+            std::vector<Vec3>         &u,
+            double                     dt = 0.);
 
     /// The bonds of the last correction, with their forces.
     const std::vector<LubricationBond> &

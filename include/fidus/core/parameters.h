@@ -105,7 +105,11 @@ namespace Fidus
     bool         release_shared_cells = false;
     /// The held solid of each particle is a ball of radius
     /// a - solid_retraction * h_finest (Fluid/Solid retraction).
-    double       solid_retraction          = 0.;
+    double solid_retraction = 0.;
+    /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
+    /// lubrication_range * h_finest (Fluid/Lubrication range).
+    bool         lubrication               = false;
+    double       lubrication_range         = 1.;
     double       linear_tolerance          = 1e-6;
     unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;
@@ -132,6 +136,9 @@ namespace Fidus
     /// into a force (F = zeta (u - u*)) for the contact stress; 0: the
     /// isolated particle's Stokes drag (see doc/rheology.md).
     double drag_coefficient = 0.;
+    /// Contact/Roughness: gaps below roughness * (smaller radius) count as
+    /// that gap in the lubrication resistance.
+    double roughness = 5e-3;
 
     // Time stepping
     double end_time           = 20.;

@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 #include <fidus/contact/contact_projector.h>
+#include <fidus/contact/lubrication_correction.h>
 #include <fidus/core/parameters.h>
 #include <fidus/core/shear_rate.h>
 #include <fidus/core/warning_log.h>
@@ -130,6 +131,11 @@ namespace Fidus
     /// AB2 extrapolation of U / shear rate to the middle of the step.
     void
     extrapolate_velocities(double dt);
+    /// Sub-grid lubrication: the squeeze resistance of gaps below the
+    /// mesh scale, added implicitly to the extrapolated velocities
+    /// (Fluid/Lubrication correction; nothing to do without it).
+    void
+    add_lubrication(double dt);
     /// Contact: projection of the extrapolated velocities onto K.
     void
     project_onto_admissible_set(double dt);
@@ -188,8 +194,9 @@ namespace Fidus
     /// uses the particles' radii.
     std::vector<double> solid_radii;
 
-    Contact::Settings         contact_settings;
-    Contact::ContactProjector projector;
+    Contact::Settings                               contact_settings;
+    Contact::ContactProjector                       projector;
+    std::unique_ptr<Contact::LubricationCorrection> lubrication;
 
     std::unique_ptr<dealii::parallel::distributed::Triangulation<dim>> tria;
     std::unique_ptr<StokesSolver<dim>>                                 solver;
@@ -211,7 +218,9 @@ namespace Fidus
     typename StokesSolver<dim>::Statistics fluid_stats;
     bool                                   remeshed = false;
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
-    std::vector<RunState::Vec3>              u_star, w_star, u_corrected;
+    /// Extrapolated, lubricated and contact-corrected velocities.
+    std::vector<RunState::Vec3>    u_star, w_star, u_lubricated, u_corrected;
+    Contact::LubricationStatistics lubrication_stats;
     typename HydrodynamicStress<dim>::Result hydrodynamic;
     SuspensionStress                         stress;
     /// Force per unit velocity of a contact correction (Contact/Drag

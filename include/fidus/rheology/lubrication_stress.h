@@ -1,0 +1,27 @@
+#ifndef fidus_rheology_lubrication_stress_h
+#define fidus_rheology_lubrication_stress_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <fidus/contact/lubrication_correction.h>
+#include <vector>
+
+namespace Fidus
+{
+  /**
+   * The stress of the sub-grid lubrication forces of the last correction
+   * (doc/rheology.md):
+   *
+   *   Sigma_l = -(1/V) sum_b l_b f_b n_b (x) n_b,
+   *
+   * over the bonds of @p bonds, with f_b the normal force that pushes the
+   * pair apart (LubricationBond::force) and l_b the branch length (centre to
+   * centre, or centre to wall). Like the contact stress: a squeeze that
+   * resists approach (f > 0) is compressive. A 3 x 3 tensor; in 2D its z row
+   * is zero.
+   */
+  dealii::SymmetricTensor<2, 3>
+  lubrication_stress(const std::vector<Contact::LubricationBond> &bonds,
+                     double                                       volume);
+} // namespace Fidus
+
+#endif
