@@ -348,7 +348,7 @@ namespace Fidus
         "Asperity height relative to the smaller radius of a pair (the "
         "radius for a wall): with 'Fluid/Lubrication correction', gaps "
         "below it count as this gap, so that the squeeze resistance stays "
-        "finite and the contact model takes over. In [0, 1).");
+        "finite and the contact model takes over. Between 0 and 1.");
       prm.declare_entry(
         "Drag coefficient",
         "0",

@@ -57,6 +57,10 @@ expect_error "unknown preconditioner" "Preconditioner" \
   "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
 expect_error "solid retraction leaves no solid" "Fluid/Solid retraction' has the value 0.8, which leaves particle 0 (radius 0.01) no solid.*allowed: values below" \
   "$(base | sed 's/Radius = 0.05/Radius = 0.01/'; printf 'subsection Fluid\n  set Solid retraction = 0.8\nend\nsubsection Mesh refinement\n  set Maximum level = 6\nend\n')"
+expect_error "lubrication range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 0\nend\n')"
+expect_error "negative roughness" "Roughness" \
+  "$(base; printf 'subsection Contact\n  set Roughness = -1\nend\n')"
 expect_error "negative drag coefficient" "Drag coefficient" \
   "$(base; printf 'subsection Contact\n  set Drag coefficient = -1\nend\n')"
 expect_error "penalty factor <= 1" "Penalty factor.*allowed: a value > 1" \
