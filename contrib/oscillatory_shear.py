@@ -74,19 +74,28 @@ def periods_of(prm):
     return p
 
 
-def read_cycles(folder):
-    """{step: {id: ((x, y, z), radius)}} from particles.csv."""
+def read_cycles(folder, steps_per_cycle):
+    """{step: {id: ((x, y, z), radius)}} of the cycle ends in particles.csv.
+
+    Streams the file: only the rows of steps that end a cycle are kept, so a
+    particles.csv written every step does not have to fit in memory.
+    """
     path = os.path.join(folder, "particles.csv")
     rows = {}
     try:
         with open(path) as f:
-            for r in csv.DictReader(f):
-                step = int(float(r["step"]))
-                rows.setdefault(step, {})[int(float(r["id"]))] = (
-                    (float(r["x"]), float(r["y"]), float(r["z"])),
-                    float(r["radius"]),
-                )
-    except (OSError, KeyError, ValueError) as e:
+            reader = csv.reader(f)
+            header = next(reader)
+            col = {name: k for k, name in enumerate(header)}
+            ks, ki = col["step"], col["id"]
+            kx, ky, kz, ka = col["x"], col["y"], col["z"], col["radius"]
+            for r in reader:
+                step = int(float(r[ks]))
+                if step % steps_per_cycle:
+                    continue
+                rows.setdefault(step, {})[int(float(r[ki]))] = (
+                    (float(r[kx]), float(r[ky]), float(r[kz])), float(r[ka]))
+    except (OSError, KeyError, ValueError, StopIteration) as e:
         fail(f"cannot read {path}: {e}")
     return rows
 
@@ -201,7 +210,8 @@ def main():
                 ("Time stepping/Time step", f"{dt:.17g}"),
                 ("Time stepping/End time", f"{args.cycles * args.period:.17g}"),
                 ("Time stepping/Adaptive time step", "false"),
-                ("Output/Particle output interval", str(steps)),
+                ("Output/Particle output interval", "0"),
+                ("Output/Particle CSV interval", str(steps)),
                 ("Output/Field output interval", "0"),
                 ("Output/Verbosity", "quiet"),
             ] + overrides
@@ -218,7 +228,7 @@ def main():
     periods = periods_of(base + "".join(prm_block(e, v) for e, v in overrides))
     table = {}
     for model, g0, folder, steps in keys:
-        cycles = read_cycles(os.path.join(folder, "output"))
+        cycles = read_cycles(os.path.join(folder, "output"), steps)
         table[(model, g0)] = returns(cycles, steps, periods, args.threshold)
         if len(table[(model, g0)]) != args.cycles:
             fail(f"{folder}: found {len(table[(model, g0)])} cycles in particles.csv, "

@@ -454,6 +454,7 @@ namespace Fidus
     {
       field_output_interval    = prm.get_integer("Field output interval");
       particle_output_interval = prm.get_integer("Particle output interval");
+      particle_csv_interval    = prm.get_integer("Particle CSV interval");
       progress_interval        = prm.get_integer("Progress interval");
       progress_wall_interval   = prm.get_double("Progress wall interval");
       checkpoint_interval      = prm.get_integer("Checkpoint interval");

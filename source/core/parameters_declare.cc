@@ -440,6 +440,13 @@ namespace Fidus
                         "0",
                         Patterns::Integer(0),
                         "Steps between VTP particle outputs; 0 = never.");
+      prm.declare_entry("Particle CSV interval",
+                        "1",
+                        Patterns::Integer(1),
+                        "Steps between the rows of particles.csv (step 0 "
+                        "and every multiple of this value), >= 1; long "
+                        "runs such as many shear cycles would otherwise "
+                        "write every particle every step.");
       prm.declare_entry(
         "Progress interval",
         "0",

@@ -63,7 +63,8 @@ namespace Fidus
   {
     TimerOutput::Scope scope(*timer, "output");
     const RunState    &s = state;
-    for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int i = 0; i < n && s.step % prm.particle_csv_interval == 0;
+         ++i)
       particles_csv->write_row({double(s.step),
                                 s.time,
                                 double(i),

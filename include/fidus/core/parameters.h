@@ -158,6 +158,8 @@ namespace Fidus
     // Output
     unsigned int field_output_interval    = 0;
     unsigned int particle_output_interval = 0;
+    /// Steps between the rows of particles.csv (Output/Particle CSV interval).
+    unsigned int particle_csv_interval    = 1;
     unsigned int progress_interval        = 0;
     double       progress_wall_interval   = 5.;
     unsigned int checkpoint_interval      = 0;
