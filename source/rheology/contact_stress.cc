@@ -26,4 +26,38 @@ namespace Fidus
       }
     return sigma / volume;
   }
+
+
+
+  std::vector<dealii::SymmetricTensor<2, 3>>
+  contact_stresslets(const Contact::ConstraintSystem &rows,
+                     const std::vector<double>       &radii,
+                     const double                     drag)
+  {
+    const std::size_t                          n = radii.size();
+    std::vector<dealii::SymmetricTensor<2, 3>> s(n);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      {
+        const double lambda = rows.lambda(k);
+        if (lambda == 0.)
+          continue;
+        const std::uint32_t bodies[2] = {rows.first(k), rows.second(k)};
+        double              branch    = rows.gap(k);
+        unsigned int        particles = 0;
+        for (const std::uint32_t body : bodies)
+          if (body < n)
+            {
+              branch += radii[body];
+              ++particles;
+            }
+        const auto &e = rows.normal(k);
+        for (const std::uint32_t body : bodies)
+          if (body < n)
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = i; j < 3; ++j)
+                s[body][i][j] -=
+                  drag * lambda * branch * e[i] * e[j] / particles;
+      }
+    return s;
+  }
 } // namespace Fidus

@@ -35,7 +35,13 @@ namespace Fidus
               "stresslet_xz",
               "stresslet_yy",
               "stresslet_yz",
-              "stresslet_zz"};
+              "stresslet_zz",
+              "contact_stresslet_xx",
+              "contact_stresslet_xy",
+              "contact_stresslet_xz",
+              "contact_stresslet_yy",
+              "contact_stresslet_yz",
+              "contact_stresslet_zz"};
     }
 
     /// statistics.csv: the run's columns, the stress columns, then the

@@ -63,27 +63,22 @@ namespace Fidus
   {
     TimerOutput::Scope scope(*timer, "output");
     const RunState    &s = state;
-    for (unsigned int i = 0; i < n && s.step % prm.particle_csv_interval == 0;
-         ++i)
-      particles_csv->write_row({double(s.step),
-                                s.time,
-                                double(i),
-                                s.X[i][0],
-                                s.X[i][1],
-                                s.X[i][2],
-                                s.U[i][0],
-                                s.U[i][1],
-                                s.U[i][2],
-                                s.W[i][0],
-                                s.W[i][1],
-                                s.W[i][2],
-                                prm.radii[i],
-                                hydrodynamic.stresslets[i][0][0],
-                                hydrodynamic.stresslets[i][0][1],
-                                hydrodynamic.stresslets[i][0][2],
-                                hydrodynamic.stresslets[i][1][1],
-                                hydrodynamic.stresslets[i][1][2],
-                                hydrodynamic.stresslets[i][2][2]});
+    if (s.step % prm.particle_csv_interval == 0)
+      {
+        const std::vector<SymmetricTensor<2, 3>> contact =
+          contact_stresslets(projector.constraints(), prm.radii, contact_drag);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const SymmetricTensor<2, 3> &h = hydrodynamic.stresslets[i];
+            const SymmetricTensor<2, 3> &c = contact[i];
+            particles_csv->write_row(
+              {double(s.step), s.time,    double(i),    s.X[i][0], s.X[i][1],
+               s.X[i][2],      s.U[i][0], s.U[i][1],    s.U[i][2], s.W[i][0],
+               s.W[i][1],      s.W[i][2], prm.radii[i], h[0][0],   h[0][1],
+               h[0][2],        h[1][1],   h[1][2],      h[2][2],   c[0][0],
+               c[0][1],        c[0][2],   c[1][1],      c[1][2],   c[2][2]});
+          }
+      }
 
     double gap = std::numeric_limits<double>::infinity();
     if (n > 0)

@@ -8,6 +8,8 @@
 // - A disc pushed into the lower wall at speed 1: lambda = 1, branch = the
 //   radius, Sigma_yy = -0.1 zeta/V.
 // - Pairs in the alert band that do not push contribute nothing.
+// - Per particle (contact_stresslets): the stresslets add up to V Sigma_c,
+//   and particles 0 and 1 (symmetric in every case) carry equal parts.
 
 #include "../fidus_test.h"
 
@@ -36,6 +38,23 @@ namespace
       for (unsigned int j = 0; j < 3; ++j)
         d = std::max(d, std::abs(s[i][j] - expected[i][j]));
     check_range(what + ": max |Sigma_c - expected|", d, 0., 1e-9);
+
+    // Per particle: the stresslets add up to V Sigma_c, and particles 0
+    // and 1, placed symmetrically in every case, carry equal parts.
+    const auto per =
+      Fidus::contact_stresslets(projector.constraints(), radii, zeta);
+    dealii::SymmetricTensor<2, 3> sum;
+    for (const auto &t : per)
+      sum += t;
+    double e = 0., share = 0.;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 3; ++j)
+        {
+          e     = std::max(e, std::abs(sum[i][j] / volume - expected[i][j]));
+          share = std::max(share, std::abs(per[0][i][j] - per[1][i][j]));
+        }
+    check_range(what + ": max |sum_i S_i / V - expected|", e, 0., 1e-9);
+    check_range(what + ": max |S_0 - S_1|", share, 0., 1e-12);
   }
 } // namespace
 

@@ -28,6 +28,17 @@ namespace Fidus
                  const std::vector<double>       &radii,
                  double                           drag,
                  double                           volume);
+
+  /**
+   * The same contact forces per particle: the stresslet S_i of particle i,
+   * with each pair row's -l f e (x) e shared half and half between its two
+   * particles and a wall row's given whole to its particle, so that
+   * sum_i S_i / V is contact_stress(). One tensor per radius.
+   */
+  std::vector<dealii::SymmetricTensor<2, 3>>
+  contact_stresslets(const Contact::ConstraintSystem &rows,
+                     const std::vector<double>       &radii,
+                     double                           drag);
 } // namespace Fidus
 
 #endif
