@@ -123,7 +123,7 @@ namespace Fidus
         "the seed's model.");
       prm.declare_entry(
         "Lubrication range",
-        "1",
+        "2",
         Patterns::Double(0.),
         "Gap, in finest cell sizes, below which the lubrication correction "
         "acts and above which the mesh is taken to resolve the squeeze "

@@ -109,7 +109,7 @@ namespace Fidus
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
     bool         lubrication               = false;
-    double       lubrication_range         = 1.;
+    double       lubrication_range         = 2.;
     double       linear_tolerance          = 1e-6;
     unsigned int max_cheap_iterations      = 1000;
     unsigned int max_linear_iterations     = 1000;
