@@ -15,6 +15,19 @@ namespace Fidus::Contact
     {
       return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     }
+
+    /// n.(v_i - v_j) of a bond for velocities stored 3 per particle; a wall
+    /// does not move normally, so only v_i counts for it.
+    double
+    closing_speed(const LubricationBond &b, const std::vector<double> &v)
+    {
+      double w = 0.;
+      for (unsigned int d = 0; d < 3; ++d)
+        w += b.n[d] *
+             (v[3 * b.i + d] -
+              (b.j == LubricationBond::no_particle ? 0. : v[3 * b.j + d]));
+      return w;
+    }
   } // namespace
 
 
@@ -92,13 +105,7 @@ namespace Fidus::Contact
     for (const LubricationBond &b : bond)
       {
         const double R = resolved ? b.r_resolved : b.r_true;
-        // The relative normal velocity n.(x_i - x_j); a wall does not move
-        // normally, so only x_i counts for it.
-        double w = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          w += b.n[d] *
-               (x[3 * b.i + d] -
-                (b.j == LubricationBond::no_particle ? 0. : x[3 * b.j + d]));
+        const double w = closing_speed(b, x);
         for (unsigned int d = 0; d < 3; ++d)
           {
             y[3 * b.i + d] += R * w * b.n[d];
@@ -216,6 +223,7 @@ namespace Fidus::Contact
           if (b.j != LubricationBond::no_particle)
             diag[3 * b.j + d] += b.r_true * b.n[d] * b.n[d];
         }
+    const std::vector<double> x_star = x;
     apply(zeta, true, x, rhs);
     apply(zeta, false, x, ax);
     double rhs_norm2 = 0., rz = 0., r_norm2 = 0.;
@@ -266,16 +274,9 @@ namespace Fidus::Contact
     // w = n.(u_i - u_j) the closing speed (before the step correction
     // below, which is a matter of time integration, not a force).
     for (LubricationBond &b : bond)
-      {
-        double w = 0., w_star = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            const bool wall = b.j == LubricationBond::no_particle;
-            w += b.n[d] * (u[b.i][d] - (wall ? 0. : u[b.j][d]));
-            w_star += b.n[d] * (u_star[b.i][d] - (wall ? 0. : u_star[b.j][d]));
-          }
-        b.force = b.r_true * w - b.r_resolved * w_star;
-      }
+      b.force = b.r_true * closing_speed(b, x) -
+                b.r_resolved * closing_speed(b, x_star);
+
     // The Euler step's tangential opening of each pair, taken off its
     // normal velocity and shared in proportion to the mobilities 1/zeta
     // (computed from the lubricated velocities of all pairs at once).

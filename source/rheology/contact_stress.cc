@@ -8,22 +8,10 @@ namespace Fidus
                  const double                     drag,
                  const double                     volume)
   {
+    // The particles' shares add up to every row's whole contribution.
     dealii::SymmetricTensor<2, 3> sigma;
-    const std::size_t             n = radii.size();
-    for (std::size_t k = 0; k < rows.size(); ++k)
-      {
-        const double lambda = rows.lambda(k);
-        if (lambda == 0.)
-          continue;
-        double branch = rows.gap(k);
-        for (const std::uint32_t body : {rows.first(k), rows.second(k)})
-          if (body < n)
-            branch += radii[body];
-        const auto &e = rows.normal(k);
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            sigma[i][j] -= drag * lambda * branch * e[i] * e[j];
-      }
+    for (const auto &s : contact_stresslets(rows, radii, drag))
+      sigma += s;
     return sigma / volume;
   }
 
