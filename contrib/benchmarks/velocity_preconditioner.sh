@@ -2,7 +2,8 @@
 # Velocity-block preconditioners of the fluid predictor, in one run on one
 # machine: the ML AMG against the geometric multigrid (GMG), each with and
 # without the particles' rigid-body correction (Fluid/Linear solver/
-# Rigid-body correction). Scenes:
+# Rigid-body correction), and GMG with the velocity block assembled instead
+# of applied matrix-free (Matrix-free velocity block = false). Scenes:
 #   inclusion3d L  one sphere (a = 0.2) off-centre, exact rigid inclusion,
 #                  maximum level L (one solve)
 #   inclusion2d L  one disc (a = 0.15) off-centre, exact rigid inclusion
@@ -10,12 +11,16 @@
 #   paper2d        prm/two_particles_2d.prm, gluey, the whole run
 #   spheres3d      24 spheres at volume fraction 0.25 between sliding walls,
 #                  level 4, one step (as contrib/benchmarks/suspension_3d.sh)
+#   pair3d L       prm/two_particles_3d.prm at maximum level L, first step
 # Prints one row per scene and preconditioner: cells, Uzawa iterations, FGMRES
-# iterations (total and per solve), set-up and solve seconds of the fluid
-# predictor summed over the run, and the run's wall seconds.
+# iterations (total and per solve), assembly, set-up and solve seconds of
+# the fluid predictor summed over the run, the run's wall seconds and its
+# peak memory (resident set, MB).
 # Usage: contrib/benchmarks/velocity_preconditioner.sh [scene ...]
 #        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
-#         dense2d, paper2d)
+#         pair3d 6, dense2d, paper2d)
+#        VARIANTS="GMG true true;AMG true true" limits the runs to those
+#        (preconditioner, rigid-body correction, matrix-free) triples.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -67,6 +72,20 @@ EOF
       ;;
     paper2d)
       echo "include $top/prm/two_particles_2d.prm"
+      ;;
+    pair3d)
+      cat <<EOF
+include $top/prm/two_particles_3d.prm
+subsection Time stepping
+  set End time = 0
+end
+subsection Mesh refinement
+  set Maximum level = $level
+end
+subsection Output
+  set Checkpoint wall interval = 0
+end
+EOF
       ;;
     spheres3d)
       # Same placement as suspension_3d.sh (random sequential addition).
@@ -120,7 +139,7 @@ EOF
 }
 
 run() {
-  local label=$1 pc=$2 rb=$3; shift 3
+  local label=$1 pc=$2 rb=$3 mf=$4; shift 4
   local prm="$work/run.prm"
   scene_prm "$@" > "$prm"
   cat >> "$prm" <<EOF
@@ -129,6 +148,7 @@ subsection Fluid
   subsection Linear solver
     set Preconditioner = $pc
     set Rigid-body correction = $rb
+    set Matrix-free velocity block = $mf
   end
 end
 subsection Output
@@ -139,11 +159,12 @@ end
 EOF
   local start=$(date +%s.%N)
   local log
-  log=$("$fidus" "$prm" 2>&1) || { echo "$label: run failed"; echo "$log" | tail -5; return; }
+  log=$(/usr/bin/time -f "peak-kB %M" "$fidus" "$prm" 2>&1) || { echo "$label: run failed"; echo "$log" | tail -5; return; }
   local wall=$(echo "$(date +%s.%N) - $start" | bc)
+  [ "$pc" = GMG ] || mf=-
   echo "$log" | /usr/bin/python3 -c '
 import re, sys
-label, pc, rb, wall = sys.argv[1:5]
+label, pc, rb, mf, wall = sys.argv[1:6]
 text = sys.stdin.read()
 cells = re.findall(r"cells (\d+)", text)
 # Per solve (verbose lines): the last "Uzawa k: ... FGMRES total N" before
@@ -155,23 +176,25 @@ for line in text.splitlines():
         last = (int(m.group(1)) + 1, int(m.group(2)))
     elif "Stokes: assembly" in line and last:
         uz.append(last[0]); fg.append(last[1]); last = None
+assembly = sum(float(s) for s in re.findall(r"Stokes: assembly ([0-9.e-]+) s", text))
 setup = sum(float(s) for s in re.findall(r"preconditioner set-up ([0-9.e-]+) s", text))
+peak = re.findall(r"peak-kB (\d+)", text)
 solve = sum(float(s) for s in re.findall(r"Uzawa/FGMRES ([0-9.e-]+) s", text))
-print("| %-14s | %s | %-5s | %7s | %5d | %7d | %6.1f | %7.2f | %8.2f | %7.1f |" % (
-    label, pc, rb, cells[-1] if cells else "?", sum(uz), sum(fg),
-    sum(fg) / max(sum(uz), 1), setup, solve, float(wall)))
-' "$label" "$pc" "$rb" "$wall"
+print("| %-14s | %s | %-5s | %-5s | %7s | %5d | %7d | %6.1f | %6.2f | %7.2f | %8.2f | %7.1f | %6.0f |" % (
+    label, pc, rb, mf, cells[-1] if cells else "?", sum(uz), sum(fg),
+    sum(fg) / max(sum(uz), 1), assembly, setup, solve, float(wall),
+    int(peak[-1]) / 1024 if peak else float("nan")))
+' "$label" "$pc" "$rb" "$mf" "$wall"
 }
 
 scenes=("$@")
-[ ${#scenes[@]} -gt 0 ] || scenes=("inclusion2d 8" "inclusion3d 3" "inclusion3d 4" "inclusion3d 5" dense2d paper2d)
-echo "| scene          | PC  | rigid | cells   | Uzawa | FGMRES  | /solve | set-up s | solve s  | wall s  |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+[ ${#scenes[@]} -gt 0 ] || scenes=("inclusion2d 8" "inclusion3d 3" "inclusion3d 4" "inclusion3d 5" "pair3d 6" dense2d paper2d)
+IFS=';' read -r -a variants <<< "${VARIANTS:-AMG false true;AMG true true;GMG false true;GMG true false;GMG true true}"
+echo "| scene          | PC  | rigid | m-free | cells   | Uzawa | FGMRES  | /solve | assembly s | set-up s | solve s  | wall s  | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
-  for pc in AMG GMG; do
-    for rb in false true; do
-      # shellcheck disable=SC2086
-      run "$s" $pc $rb $s
-    done
+  for variant in "${variants[@]}"; do
+    # shellcheck disable=SC2086
+    run "$s" $variant $s
   done
 done

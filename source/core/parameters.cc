@@ -215,10 +215,17 @@ namespace Fidus
       amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
       amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
       amg_smoother_type         = prm.get("AMG smoother type");
-      geometric_multigrid       = prm.get("Preconditioner") == "GMG";
-      mg_smoother_degree        = prm.get_integer("Multigrid smoother degree");
-      mg_viscosity_averaging    = prm.get("Multigrid viscosity averaging");
-      rigid_body_correction     = prm.get_bool("Rigid-body correction");
+      // auto: the faster one per dimension as measured
+      // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
+      // the GMG does not have.
+      const std::string preconditioner = prm.get("Preconditioner");
+      geometric_multigrid =
+        preconditioner == "GMG" ||
+        (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);
+      mg_smoother_degree         = prm.get_integer("Multigrid smoother degree");
+      mg_viscosity_averaging     = prm.get("Multigrid viscosity averaging");
+      rigid_body_correction      = prm.get_bool("Rigid-body correction");
+      matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
       if (geometric_multigrid && velocity_degree > 3)
         throw InputError(
           "entry 'Fluid/Linear solver/Preconditioner' has the value 'GMG' "

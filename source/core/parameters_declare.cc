@@ -184,16 +184,16 @@ namespace Fidus
           "to 40 % faster in 3D for one particle, but 2.3 times slower "
           "for 24 spheres at volume fraction 0.25; being block Jacobi "
           "across ranks, it is expected to weaken on many ranks (not "
-          "measured; doc/fluid.md).");
+          "measured; doc/fluid.md, doc/performance.md).");
         prm.declare_entry(
           "Preconditioner",
-          "AMG",
-          Patterns::Selection("AMG|GMG"),
+          "auto",
+          Patterns::Selection("auto|AMG|GMG"),
           "Velocity-block preconditioner: AMG (Trilinos ML with the rigid "
-          "modes) or GMG (geometric multigrid: matrix-free levels by global "
+          "modes), GMG (geometric multigrid: matrix-free levels by global "
           "coarsening, Chebyshev smoothing, CG with AMG on the coarse box "
-          "mesh; Velocity degree 2 or 3). See doc/fluid.md for which is "
-          "faster where.");
+          "mesh; Velocity degree 2 or 3), or auto: the faster one as "
+          "measured, GMG in 3D and AMG in 2D (doc/preconditioners.md).");
         prm.declare_entry("Multigrid smoother degree",
                           "4",
                           Patterns::Integer(1, 20),
@@ -206,9 +206,18 @@ namespace Fidus
           "How the viscosity (eta_f in the fluid, r eta_f in the solid) is "
           "averaged over each cell of the GMG levels below the finest: none "
           "(the point values at each level's own quadrature points, measured "
-          "fastest for particles: doc/fluid.md), or the arithmetic, harmonic "
+          "fastest for particles: doc/preconditioners.md), or the arithmetic, harmonic "
           "or geometric mean over the cell. The finest level always uses the "
           "point values of the assembly.");
+        prm.declare_entry(
+          "Matrix-free velocity block",
+          "true",
+          Patterns::Bool(),
+          "With Preconditioner = GMG: multiply by the velocity block with "
+          "the finest multigrid level's matrix-free operator and do not "
+          "assemble it (the system matrix keeps only the divergence "
+          "blocks). false assembles it, as with AMG; both give the same "
+          "solution. Ignored with AMG.");
         prm.declare_entry(
           "Rigid-body correction",
           "true",
@@ -218,7 +227,7 @@ namespace Fidus
           "low-energy modes (its rigid motions, resisted only by the fluid "
           "around it) that one V-cycle misses, so that without the "
           "correction the FGMRES count grows with the number of particles "
-          "(doc/fluid.md).");
+          "(doc/preconditioners.md).");
       }
       prm.leave_subsection();
     }

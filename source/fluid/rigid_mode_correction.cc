@@ -5,10 +5,12 @@
 namespace Fidus
 {
   void
-  RigidModeCorrection::reinit(const TrilinosWrappers::SparseMatrix &A,
-                              const unsigned int                    n_particles,
-                              const unsigned int                    modes,
-                              std::vector<unsigned int>           &&rows_in,
+  RigidModeCorrection::reinit(const VelocityBlock        &A,
+                              const IndexSet             &owned,
+                              const MPI_Comm              comm,
+                              const unsigned int          n_particles,
+                              const unsigned int          modes,
+                              std::vector<unsigned int> &&rows_in,
                               std::vector<unsigned int> &&particles_in,
                               std::vector<double>       &&values_in)
   {
@@ -18,16 +20,15 @@ namespace Fidus
     rows         = std::move(rows_in);
     particles    = std::move(particles_in);
     values       = std::move(values_in);
-    communicator = A.get_mpi_communicator();
+    communicator = comm;
     if (n_columns == 0)
       return;
 
     // Z^T A Z column by column: z_j, then A z_j, then Z^T (A z_j). The
     // supports of different particles are disjoint, so z_j is cheap to set
     // and to clear; the product with A is the cost.
-    TrilinosWrappers::MPI::Vector z(A.locally_owned_domain_indices(),
-                                    communicator),
-      Az(A.locally_owned_range_indices(), communicator);
+    TrilinosWrappers::MPI::Vector z(owned, communicator),
+      Az(owned, communicator);
     FullMatrix<double>     E(n_columns, n_columns);
     dealii::Vector<double> column(n_columns);
     // The rows of each particle, so that z_j is set without a full pass.

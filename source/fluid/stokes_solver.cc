@@ -23,6 +23,7 @@
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/deflated_velocity_preconditioner.h>
 #include <fidus/fluid/rigid_mode_correction.h>
+#include <fidus/fluid/stokes_operator.h>
 #include <fidus/fluid/stokes_solver.h>
 #include <fidus/fluid/velocity_multigrid.h>
 #include <fidus/mesh/canonical_cell_order.h>
@@ -156,11 +157,18 @@ namespace Fidus
                                  const bool pressure_only) {
       matrix.clear();
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+      // Without an assembled velocity block (matrix-free GMG) the system
+      // holds only B, B^T and the diagonal of constrained rows.
       for (unsigned int c = 0; c < dim + 1; ++c)
         for (unsigned int d = 0; d < dim + 1; ++d)
-          coupling[c][d] = ((c == dim && d == dim) == pressure_only) ?
-                             DoFTools::always :
-                             DoFTools::none;
+          {
+            const bool pp = c == dim && d == dim;
+            const bool uu = c < dim && d < dim;
+            coupling[c][d] =
+              pp == pressure_only && !(uu && !velocity_block_assembled()) ?
+                DoFTools::always :
+                DoFTools::none;
+          }
       TrilinosWrappers::BlockSparsityPattern sp(owned_partitioning,
                                                 owned_partitioning,
                                                 relevant_partitioning,
@@ -341,6 +349,7 @@ namespace Fidus
     std::vector<unsigned int>            cands;
     dealii::Vector<double>               force(dim + 1);
     std::vector<bool>                    is_velocity(dofs_per_cell);
+    const bool                           with_a = velocity_block_assembled();
     for (unsigned int k = 0; k < dofs_per_cell; ++k)
       is_velocity[k] = fe.system_to_component_index(k).first < dim;
 
@@ -414,8 +423,11 @@ namespace Fidus
               for (unsigned int l = 0; l <= k; ++l)
                 {
                   if (is_velocity[k] && is_velocity[l])
-                    cell_matrix(k, l) +=
-                      2. * eta[q] * (symgrad[k] * symgrad[l]) * JxW;
+                    {
+                      if (with_a)
+                        cell_matrix(k, l) +=
+                          2. * eta[q] * (symgrad[k] * symgrad[l]) * JxW;
+                    }
                   else if (is_velocity[k] != is_velocity[l])
                     cell_matrix(k, l) -=
                       (div[k] * phi_p[l] + phi_p[k] * div[l]) * JxW;
@@ -456,6 +468,32 @@ namespace Fidus
     base_rhs.compress(VectorOperation::add);
     solid_mask.compress(VectorOperation::insert);
     make_pressure_rhs_consistent();
+  }
+
+
+
+  template <int dim>
+  bool
+  StokesSolver<dim>::velocity_block_assembled() const
+  {
+    return !(settings.geometric_multigrid &&
+             settings.matrix_free_velocity_block);
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::subtract_constraint_load()
+  {
+    // The assembly moves the known values of constrained DoFs (the boundary
+    // velocity) to the right-hand side through the local matrices; without
+    // the velocity-velocity part of those, the same load comes from the
+    // matrix-free operator applied to the field of constrained values.
+    TrilinosWrappers::MPI::BlockVector g(owned_partitioning, mpi_communicator);
+    constraints.distribute(g);
+    preconditioners->multigrid->subtract_constraint_load(base_rhs.block(0),
+                                                         g.block(0));
   }
 
 
@@ -587,19 +625,18 @@ namespace Fidus
   unsigned int
   StokesSolver<dim>::solve_linear(Statistics &stats)
   {
-    const auto &A = system_matrix.block(0, 0);
     const auto &Q = preconditioners->rigid_body_correction;
     if (settings.geometric_multigrid)
       return solve_linear(
         stats,
         DeflatedVelocityPreconditioner<VelocityMultigrid<dim>>(
-          A,
+          *velocity_block,
           *preconditioners->multigrid,
           Q));
     return solve_linear(
       stats,
       DeflatedVelocityPreconditioner<TrilinosWrappers::PreconditionAMG>(
-        A,
+        *velocity_block,
         preconditioners->amg,
         Q));
   }
@@ -643,6 +680,7 @@ namespace Fidus
                               false);
         const BlockSchurPreconditioner<VelocityPreconditioner> cheap(
           system_matrix,
+          *velocity_block,
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
@@ -651,7 +689,10 @@ namespace Fidus
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
                                                                     data);
-            solver.solve(system_matrix, distributed_solution, rhs, cheap);
+            solver.solve(StokesOperator(system_matrix, *velocity_block),
+                         distributed_solution,
+                         rhs,
+                         cheap);
             done = true;
           }
         catch (const SolverControl::NoConvergence &)
@@ -667,6 +708,7 @@ namespace Fidus
                               false);
         const BlockSchurPreconditioner<VelocityPreconditioner> expensive(
           system_matrix,
+          *velocity_block,
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
@@ -675,7 +717,10 @@ namespace Fidus
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
                                                                     data);
-            solver.solve(system_matrix, distributed_solution, rhs, expensive);
+            solver.solve(StokesOperator(system_matrix, *velocity_block),
+                         distributed_solution,
+                         rhs,
+                         expensive);
           }
         catch (const SolverControl::NoConvergence &e)
           {
@@ -718,6 +763,8 @@ namespace Fidus
 
     timer.restart();
     setup_preconditioners(solid, fluid_viscosity);
+    if (!velocity_block_assembled())
+      subtract_constraint_load();
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();
@@ -763,7 +810,7 @@ namespace Fidus
         constexpr unsigned int                    depth = 5;
         std::deque<TrilinosWrappers::MPI::Vector> dX, dF, AdF;
         TrilinosWrappers::MPI::Vector x_prev, f_prev, Af_prev, f, Af;
-        const auto                   &A = system_matrix.block(0, 0);
+        const VelocityBlock          &A = *velocity_block;
         double previous_residual        = std::numeric_limits<double>::max();
         for (unsigned int k = 0; k < settings.max_uzawa_iterations; ++k)
           {

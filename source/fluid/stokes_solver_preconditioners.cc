@@ -60,7 +60,7 @@ namespace Fidus
                          points,
                          eta);
           },
-          system_matrix.block(0, 0),
+          velocity_block_assembled() ? &system_matrix.block(0, 0) : nullptr,
           constraints);
       }
     else
@@ -125,6 +125,16 @@ namespace Fidus
         preconditioners->amg.initialize(system_matrix.block(0, 0),
                                         ml_parameters);
       }
+    if (velocity_block_assembled())
+      velocity_block =
+        std::make_unique<VelocityBlock>(system_matrix.block(0, 0));
+    else
+      velocity_block = std::make_unique<VelocityBlock>(
+        [mg = preconditioners->multigrid.get()](
+          TrilinosWrappers::MPI::Vector       &dst,
+          const TrilinosWrappers::MPI::Vector &src) {
+          mg->apply_velocity_block(dst, src);
+        });
     build_rigid_body_correction(solid);
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
@@ -191,7 +201,9 @@ namespace Fidus
           }
       }
     preconditioners->rigid_body_correction.reinit(
-      system_matrix.block(0, 0),
+      *velocity_block,
+      owned_partitioning[0],
+      mpi_communicator,
       settings.rigid_body_correction ? solid.n_particles() : 0,
       n_modes,
       std::move(rows),

@@ -37,11 +37,17 @@ namespace Fidus
           const std::set<types::boundary_id> &dirichlet_ids) = 0;
     virtual void
     update(const ViscosityFunction              &viscosity,
-           const TrilinosWrappers::SparseMatrix &velocity_block,
+           const TrilinosWrappers::SparseMatrix *velocity_block,
            const AffineConstraints<double>      &system_constraints) = 0;
     virtual void
     vmult(TrilinosWrappers::MPI::Vector       &dst,
           const TrilinosWrappers::MPI::Vector &src) const = 0;
+    virtual void
+    apply_velocity_block(TrilinosWrappers::MPI::Vector       &dst,
+                         const TrilinosWrappers::MPI::Vector &src) const = 0;
+    virtual void
+    subtract_constraint_load(TrilinosWrappers::MPI::Vector       &rhs,
+                             const TrilinosWrappers::MPI::Vector &g) const = 0;
 
     Info info;
   };
@@ -148,7 +154,7 @@ namespace Fidus
 
       void
       update(const ViscosityFunction              &viscosity,
-             const TrilinosWrappers::SparseMatrix &velocity_block,
+             const TrilinosWrappers::SparseMatrix *velocity_block,
              const AffineConstraints<double>      &system_constraints) override
       {
         Timer              timer;
@@ -224,18 +230,21 @@ namespace Fidus
           *transfer);
 
         // Rows with a constraint in the system (Dirichlet, hanging, periodic)
-        // hold only their diagonal there: invert it exactly instead.
+        // hold only their diagonal there: invert it exactly instead. The
+        // system numbers velocities first, so the rank's velocity DoFs are
+        // the first to_level.size() of its owned system DoFs.
         constrained_rows.clear();
-        const IndexSet &owned = velocity_block.locally_owned_range_indices();
-        unsigned int    i     = 0;
-        for (const auto g : owned)
-          {
-            if (system_constraints.is_constrained(g))
-              constrained_rows.emplace_back(i,
-                                            1. /
-                                              velocity_block.diag_element(g));
-            ++i;
-          }
+        const types::global_dof_index first =
+          system_velocity_dofs.n_elements() > 0 ?
+            *system_velocity_dofs.begin() :
+            0;
+        for (unsigned int i = 0; i < to_level.size(); ++i)
+          if (system_constraints.is_constrained(first + i))
+            constrained_rows.emplace_back(i,
+                                          velocity_block ?
+                                            1. / velocity_block->diag_element(
+                                                   first + i) :
+                                            1.);
 
         operators[max_level]->initialize_dof_vector(mg_src);
         operators[max_level]->initialize_dof_vector(mg_dst);
@@ -257,6 +266,43 @@ namespace Fidus
           d[i] = mg_dst.local_element(to_level[i]);
         for (const auto &[i, inverse] : constrained_rows)
           d[i] = inverse * s[i];
+      }
+
+      void
+      apply_velocity_block(
+        TrilinosWrappers::MPI::Vector       &dst,
+        const TrilinosWrappers::MPI::Vector &src) const override
+      {
+        const double *s = src.begin();
+        for (unsigned int i = 0; i < to_level.size(); ++i)
+          mg_src.local_element(to_level[i]) = s[i];
+        for (const auto &[i, inverse] : constrained_rows)
+          mg_src.local_element(to_level[i]) = 0.;
+        operators[operators.max_level()]->vmult(mg_dst, mg_src);
+        double *d = dst.begin();
+        for (unsigned int i = 0; i < to_level.size(); ++i)
+          d[i] = mg_dst.local_element(to_level[i]);
+        for (const auto &[i, inverse] : constrained_rows)
+          d[i] = s[i] / inverse;
+      }
+
+      void
+      subtract_constraint_load(
+        TrilinosWrappers::MPI::Vector       &rhs,
+        const TrilinosWrappers::MPI::Vector &g) const override
+      {
+        // g is read as it stands (its constrained entries are the point),
+        // so every entry, owned or ghost, must be there: the ghosts come
+        // from the level's partitioner.
+        const double *gl = g.begin();
+        for (unsigned int i = 0; i < to_level.size(); ++i)
+          mg_src.local_element(to_level[i]) = gl[i];
+        mg_src.update_ghost_values();
+        operators[operators.max_level()]->compute_load(mg_dst, mg_src);
+        mg_src.zero_out_ghost_values();
+        double *r = rhs.begin();
+        for (unsigned int i = 0; i < to_level.size(); ++i)
+          r[i] -= mg_dst.local_element(to_level[i]);
       }
 
     private:
@@ -287,6 +333,7 @@ namespace Fidus
         // The system numbers velocities first: its velocity DoFs on this
         // rank are a contiguous range of the same length.
         const IndexSet system_owned = system.locally_owned_dofs();
+        system_velocity_dofs        = system_owned;
         to_level.assign(n_owned, numbers::invalid_unsigned_int);
         const FiniteElement<dim>            &system_fe = system.get_fe();
         std::vector<types::global_dof_index> system_dofs(
@@ -414,7 +461,9 @@ namespace Fidus
                        MGTransferGlobalCoarsening<dim, VectorType>>>
         preconditioner;
 
-      std::vector<unsigned int>                    to_level;
+      std::vector<unsigned int> to_level;
+      /// The system's locally owned DoFs (velocities first).
+      IndexSet                                     system_velocity_dofs;
       std::vector<std::pair<unsigned int, double>> constrained_rows;
       mutable VectorType                           mg_src, mg_dst;
     };
@@ -490,7 +539,7 @@ namespace Fidus
   void
   VelocityMultigrid<dim>::update(
     const ViscosityFunction              &viscosity,
-    const TrilinosWrappers::SparseMatrix &velocity_block,
+    const TrilinosWrappers::SparseMatrix *velocity_block,
     const AffineConstraints<double>      &system_constraints)
   {
     implementation->update(viscosity, velocity_block, system_constraints);
@@ -504,6 +553,28 @@ namespace Fidus
                                 const TrilinosWrappers::MPI::Vector &src) const
   {
     implementation->vmult(dst, src);
+  }
+
+
+
+  template <int dim>
+  void
+  VelocityMultigrid<dim>::apply_velocity_block(
+    TrilinosWrappers::MPI::Vector       &dst,
+    const TrilinosWrappers::MPI::Vector &src) const
+  {
+    implementation->apply_velocity_block(dst, src);
+  }
+
+
+
+  template <int dim>
+  void
+  VelocityMultigrid<dim>::subtract_constraint_load(
+    TrilinosWrappers::MPI::Vector       &rhs,
+    const TrilinosWrappers::MPI::Vector &g) const
+  {
+    implementation->subtract_constraint_load(rhs, g);
   }
 
 

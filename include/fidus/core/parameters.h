@@ -108,18 +108,19 @@ namespace Fidus
     double solid_retraction = 0.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
-    bool         lubrication               = false;
-    double       lubrication_range         = 2.;
-    double       linear_tolerance          = 1e-6;
-    unsigned int max_cheap_iterations      = 1000;
-    unsigned int max_linear_iterations     = 1000;
-    double       amg_aggregation_threshold = 0.;
-    unsigned int amg_smoother_sweeps       = 4;
-    std::string  amg_smoother_type         = "Chebyshev";
-    bool         geometric_multigrid       = false;
-    unsigned int mg_smoother_degree        = 4;
-    std::string  mg_viscosity_averaging    = "none";
-    bool         rigid_body_correction     = true;
+    bool         lubrication                = false;
+    double       lubrication_range          = 2.;
+    double       linear_tolerance           = 1e-6;
+    unsigned int max_cheap_iterations       = 1000;
+    unsigned int max_linear_iterations      = 1000;
+    double       amg_aggregation_threshold  = 0.;
+    unsigned int amg_smoother_sweeps        = 4;
+    std::string  amg_smoother_type          = "Chebyshev";
+    bool         geometric_multigrid        = false;
+    unsigned int mg_smoother_degree         = 4;
+    std::string  mg_viscosity_averaging     = "none";
+    bool         rigid_body_correction      = true;
+    bool         matrix_free_velocity_block = true;
 
     // Particles
     std::vector<std::array<double, 3>> positions;

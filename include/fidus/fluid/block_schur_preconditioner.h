@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <fidus/fluid/velocity_block.h>
 
 namespace Fidus
 {
@@ -31,14 +32,17 @@ namespace Fidus
   class BlockSchurPreconditioner : public Subscriptor
   {
   public:
-    /// @p stokes: the system matrix; @p mass: the 1/eta pressure mass;
+    /// @p stokes: the system matrix (for B^T); @p A: its velocity block
+    /// (assembled or matrix-free); @p mass: the 1/eta pressure mass;
     /// @p expensive selects inner solves.
     BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix &stokes,
+                             const VelocityBlock                       &A,
                              const TrilinosWrappers::SparseMatrix      &mass,
                              const VelocityPreconditioner &velocity,
                              const TrilinosWrappers::PreconditionJacobi &jacobi,
                              const bool expensive)
       : stokes(stokes)
+      , A(A)
       , mass(mass)
       , velocity(velocity)
       , jacobi(jacobi)
@@ -73,7 +77,7 @@ namespace Fidus
           SolverControl control(10000, 1e-2 * tmp.l2_norm());
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
           dst.block(0) = 0;
-          cg.solve(stokes.block(0, 0), dst.block(0), tmp, velocity);
+          cg.solve(A, dst.block(0), tmp, velocity);
           inner_iterations += control.last_step();
         }
       else
@@ -85,6 +89,7 @@ namespace Fidus
 
   private:
     const TrilinosWrappers::BlockSparseMatrix  &stokes;
+    const VelocityBlock                        &A;
     const TrilinosWrappers::SparseMatrix       &mass;
     const VelocityPreconditioner               &velocity;
     const TrilinosWrappers::PreconditionJacobi &jacobi;

@@ -1,9 +1,9 @@
 #ifndef fidus_fluid_deflated_velocity_preconditioner_h
 #define fidus_fluid_deflated_velocity_preconditioner_h
 
-#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <fidus/fluid/rigid_mode_correction.h>
+#include <fidus/fluid/velocity_block.h>
 
 namespace Fidus
 {
@@ -22,9 +22,9 @@ namespace Fidus
   class DeflatedVelocityPreconditioner
   {
   public:
-    DeflatedVelocityPreconditioner(const TrilinosWrappers::SparseMatrix &A,
-                                   const VPreconditioner                &P,
-                                   const RigidModeCorrection            &Q)
+    DeflatedVelocityPreconditioner(const VelocityBlock       &A,
+                                   const VPreconditioner     &P,
+                                   const RigidModeCorrection &Q)
       : A(A)
       , P(P)
       , Q(Q)
@@ -57,7 +57,7 @@ namespace Fidus
     }
 
   private:
-    const TrilinosWrappers::SparseMatrix &A;
+    const VelocityBlock                  &A;
     const VPreconditioner                &P;
     const RigidModeCorrection            &Q;
     mutable TrilinosWrappers::MPI::Vector r, t;

@@ -1,9 +1,10 @@
 #ifndef fidus_fluid_rigid_mode_correction_h
 #define fidus_fluid_rigid_mode_correction_h
 
+#include <deal.II/base/index_set.h>
 #include <deal.II/lac/lapack_full_matrix.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <fidus/fluid/velocity_block.h>
 #include <vector>
 
 namespace Fidus
@@ -20,7 +21,7 @@ namespace Fidus
    * modes of the solid. One V-cycle (AMG or geometric) does not see those
    * local modes; with 120 discs the cheap preconditioner needed about 390
    * FGMRES iterations per solve, against 31 with exact inner solves of the
-   * same blocks (doc/fluid.md). The correction Q = Z (Z^T A Z)^{-1} Z^T
+   * same blocks (doc/preconditioners.md). The correction Q = Z (Z^T A Z)^{-1} Z^T
    * removes them: Z holds, for each particle, its rigid motions on the
    * velocity DoFs of the cells that meet its solid, zero elsewhere.
    *
@@ -36,15 +37,18 @@ namespace Fidus
      * block of the DoFs in a particle's support; @p particles: the particle
      * of each (0 ... @p n_particles - 1, the same numbering on every rank);
      * @p values: the @p n_modes rigid-motion values of each row, row after
-     * row. Costs n_particles * n_modes products with A.
+     * row; @p owned: the velocity DoFs of this rank. Costs n_particles *
+     * n_modes products with A.
      */
     void
-    reinit(const TrilinosWrappers::SparseMatrix &A,
-           unsigned int                          n_particles,
-           unsigned int                          n_modes,
-           std::vector<unsigned int>           &&rows,
-           std::vector<unsigned int>           &&particles,
-           std::vector<double>                 &&values);
+    reinit(const VelocityBlock        &A,
+           const IndexSet             &owned,
+           MPI_Comm                    communicator,
+           unsigned int                n_particles,
+           unsigned int                n_modes,
+           std::vector<unsigned int> &&rows,
+           std::vector<unsigned int> &&particles,
+           std::vector<double>       &&values);
 
     /// Whether there is a coarse space (at least one particle).
     bool

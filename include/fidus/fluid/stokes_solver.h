@@ -11,6 +11,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <fidus/fluid/velocity_block.h>
 #include <fidus/particles/solid_indicator.h>
 #include <memory>
 #include <set>
@@ -60,6 +61,10 @@ namespace Fidus
       bool         geometric_multigrid    = false;
       unsigned int mg_smoother_degree     = 4;
       std::string  mg_viscosity_averaging = "none";
+      /// With the geometric multigrid: multiply by the velocity block with
+      /// the finest level's matrix-free operator and do not assemble it
+      /// (false: assemble it as with the AMG).
+      bool matrix_free_velocity_block = true;
       /// Correct each V-cycle with the particles' rigid motions
       /// (RigidModeCorrection).
       bool rigid_body_correction = true;
@@ -310,6 +315,14 @@ namespace Fidus
                  std::vector<double>             &eta) const;
     void
     make_pressure_rhs_consistent();
+    /// Whether the velocity block is assembled into system_matrix (not
+    /// when the geometric multigrid applies it without a matrix).
+    bool
+    velocity_block_assembled() const;
+    /// Without an assembled velocity block: base_rhs -= C^T A g, the load
+    /// of the boundary values that the assembly leaves out.
+    void
+    subtract_constraint_load();
 
     MPI_Comm                                   mpi_communicator;
     parallel::distributed::Triangulation<dim> &triangulation;
@@ -349,6 +362,9 @@ namespace Fidus
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
+    /// Products with the velocity block (assembled or matrix-free), set
+    /// with the preconditioners.
+    std::unique_ptr<VelocityBlock> velocity_block;
 
     /// Holds the multiplier between prepare_for_checkpoint() and the save.
     std::unique_ptr<parallel::distributed::

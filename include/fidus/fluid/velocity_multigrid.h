@@ -104,19 +104,42 @@ namespace Fidus
 
     /**
      * New viscosity (the particles moved): level coefficients, diagonals,
-     * Chebyshev bounds, coarse matrix and its AMG. @p velocity_block and
-     * @p system_constraints: the assembled A and the constraints of the
-     * system, whose constrained rows are inverted exactly.
+     * Chebyshev bounds, coarse matrix and its AMG. @p system_constraints:
+     * the constraints of the system; their rows (zero in every right-hand
+     * side) hold only a diagonal, which the V-cycle inverts exactly: the
+     * diagonal of the assembled @p velocity_block, or 1 where A is not
+     * assembled (nullptr), as in apply_velocity_block().
      */
     void
     update(const ViscosityFunction              &viscosity,
-           const TrilinosWrappers::SparseMatrix &velocity_block,
+           const TrilinosWrappers::SparseMatrix *velocity_block,
            const AffineConstraints<double>      &system_constraints);
 
     /// dst = one V-cycle applied to src (velocity block vectors).
     void
     vmult(TrilinosWrappers::MPI::Vector       &dst,
           const TrilinosWrappers::MPI::Vector &src) const;
+
+    /**
+     * dst = A src with the finest level's matrix-free operator, on the
+     * system's velocity vectors (after update()): the same product as the
+     * assembled velocity block, but for the constrained rows, which act as
+     * the diagonal given to update().
+     */
+    void
+    apply_velocity_block(TrilinosWrappers::MPI::Vector       &dst,
+                         const TrilinosWrappers::MPI::Vector &src) const;
+
+    /**
+     * rhs -= C^T A g: the load of the constrained values @p g (the system's
+     * velocity vector with the inhomogeneities of its constraints, zero
+     * elsewhere) on the free rows, which the assembly leaves out when A is
+     * not assembled. C resolves hanging-node and periodic constraints;
+     * Dirichlet rows get nothing. After update().
+     */
+    void
+    subtract_constraint_load(TrilinosWrappers::MPI::Vector       &rhs,
+                             const TrilinosWrappers::MPI::Vector &g) const;
 
     /// Levels, coarse size and set-up times.
     const Info &

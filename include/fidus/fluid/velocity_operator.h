@@ -69,7 +69,36 @@ namespace Fidus
       phi.integrate(EvaluationFlags::gradients);
     }
 
+    /// dst = C^T A field, with @p field (ghosted) read as it stands,
+    /// constrained entries included, instead of from its free entries: the
+    /// load of the inhomogeneous constraints on the free rows.
+    void
+    compute_load(VectorType &dst, const VectorType &field) const
+    {
+      this->data->cell_loop(&VelocityOperator::plain_cell_range,
+                            this,
+                            dst,
+                            field,
+                            true);
+    }
+
   private:
+    void
+    plain_cell_range(const MatrixFree<dim, double>               &data,
+                     VectorType                                  &dst,
+                     const VectorType                            &src,
+                     const std::pair<unsigned int, unsigned int> &range) const
+    {
+      Evaluator phi(data);
+      for (unsigned int batch = range.first; batch < range.second; ++batch)
+        {
+          phi.reinit(batch);
+          phi.read_dof_values_plain(src);
+          cell_term(phi);
+          phi.distribute_local_to_global(dst);
+        }
+    }
+
     void
     apply_add(VectorType &dst, const VectorType &src) const override
     {
