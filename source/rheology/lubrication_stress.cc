@@ -6,11 +6,39 @@ namespace Fidus
   lubrication_stress(const std::vector<Contact::LubricationBond> &bonds,
                      const double                                 volume)
   {
-    dealii::SymmetricTensor<2, 3> sigma;
+    std::size_t n = 0;
     for (const Contact::LubricationBond &b : bonds)
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = i; j < 3; ++j)
-          sigma[i][j] -= b.force * b.length * b.n[i] * b.n[j];
+      {
+        n = std::max<std::size_t>(n, b.i + 1);
+        if (b.j != Contact::LubricationBond::no_particle)
+          n = std::max<std::size_t>(n, b.j + 1);
+      }
+    dealii::SymmetricTensor<2, 3> sigma;
+    for (const auto &s : lubrication_stresslets(bonds, n))
+      sigma += s;
     return sigma / volume;
+  }
+
+
+
+  std::vector<dealii::SymmetricTensor<2, 3>>
+  lubrication_stresslets(const std::vector<Contact::LubricationBond> &bonds,
+                         const std::size_t n_particles)
+  {
+    std::vector<dealii::SymmetricTensor<2, 3>> s(n_particles);
+    for (const Contact::LubricationBond &b : bonds)
+      {
+        const bool   pair  = b.j != Contact::LubricationBond::no_particle;
+        const double share = pair ? 0.5 : 1.;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            {
+              const double t = -share * b.force * b.length * b.n[i] * b.n[j];
+              s[b.i][i][j] += t;
+              if (pair)
+                s[b.j][i][j] += t;
+            }
+      }
+    return s;
   }
 } // namespace Fidus

@@ -41,7 +41,13 @@ namespace Fidus
               "contact_stresslet_xz",
               "contact_stresslet_yy",
               "contact_stresslet_yz",
-              "contact_stresslet_zz"};
+              "contact_stresslet_zz",
+              "lubrication_stresslet_xx",
+              "lubrication_stresslet_xy",
+              "lubrication_stresslet_xz",
+              "lubrication_stresslet_yy",
+              "lubrication_stresslet_yz",
+              "lubrication_stresslet_zz"};
     }
 
     /// statistics.csv: the run's columns, the stress columns, then the

@@ -67,16 +67,22 @@ namespace Fidus
       {
         const std::vector<SymmetricTensor<2, 3>> contact =
           contact_stresslets(projector.constraints(), prm.radii, contact_drag);
+        const std::vector<SymmetricTensor<2, 3>> lubricated =
+          lubrication ? lubrication_stresslets(lubrication->bonds(), n) :
+                        std::vector<SymmetricTensor<2, 3>>(n);
         for (unsigned int i = 0; i < n; ++i)
           {
             const SymmetricTensor<2, 3> &h = hydrodynamic.stresslets[i];
             const SymmetricTensor<2, 3> &c = contact[i];
+            const SymmetricTensor<2, 3> &l = lubricated[i];
             particles_csv->write_row(
               {double(s.step), s.time,    double(i),    s.X[i][0], s.X[i][1],
                s.X[i][2],      s.U[i][0], s.U[i][1],    s.U[i][2], s.W[i][0],
                s.W[i][1],      s.W[i][2], prm.radii[i], h[0][0],   h[0][1],
                h[0][2],        h[1][1],   h[1][2],      h[2][2],   c[0][0],
-               c[0][1],        c[0][2],   c[1][1],      c[1][2],   c[2][2]});
+               c[0][1],        c[0][2],   c[1][1],      c[1][2],   c[2][2],
+               l[0][0],        l[0][1],   l[0][2],      l[1][1],   l[1][2],
+               l[2][2]});
           }
       }
 

@@ -10,11 +10,18 @@
 // - Pairs in the alert band that do not push contribute nothing.
 // - Per particle (contact_stresslets): the stresslets add up to V Sigma_c,
 //   and particles 0 and 1 (symmetric in every case) carry equal parts.
+// - Sub-grid lubrication (lubrication_stresslets): two discs closing head-on
+//   along x, a third one closing on the lower wall, a fourth far away. The
+//   pair's bond (force f > 0, branch l = centre distance) gives each disc
+//   -f l / 2 in xx, the wall bond gives its disc -f l in yy (l = the
+//   radius), the far disc nothing; the shares add up to V Sigma_l.
 
 #include "../fidus_test.h"
 
 #include <fidus/contact/contact_projector.h>
+#include <fidus/contact/lubrication_correction.h>
 #include <fidus/rheology/contact_stress.h>
+#include <fidus/rheology/lubrication_stress.h>
 
 using namespace FidusTest;
 using Fidus::Contact::Vec3;
@@ -113,5 +120,74 @@ main(int argc, char **argv)
   dealii::SymmetricTensor<2, 3> expected;
   expected[1][1] = -2. * zeta * 0.1 / volume;
   check_stress("two discs pushed into the wall", projector, radii, expected);
+
+  {
+    Fidus::Contact::LubricationSettings ls;
+    ls.dimension = 2;
+    ls.range     = 0.02;
+    Fidus::Contact::LubricationCorrection lub(ls);
+    lub.set_walls({wall});
+    const std::vector<Vec3>   xl     = {{{0.4, 0.5, 0.}},
+                                        {{0.605, 0.5, 0.}},
+                                        {{0.8, 0.11, 0.}},
+                                        {{2., 2., 0.}}};
+    const std::vector<double> rl     = {0.1, 0.1, 0.1, 0.1};
+    const std::vector<Vec3>   u_star = {{{1., 0., 0.}},
+                                        {{-1., 0., 0.}},
+                                        {{0., -1., 0.}},
+                                        {{0., 0., 0.}}};
+    std::vector<Vec3>         ul;
+    lub.correct(xl, rl, u_star, ul);
+    const auto &bonds  = lub.bonds();
+    double      f_pair = 0., l_pair = 0., f_wall = 0., l_wall = 0.;
+    for (const auto &b : bonds)
+      if (b.j == Fidus::Contact::LubricationBond::no_particle)
+        {
+          f_wall = b.force;
+          l_wall = b.length;
+        }
+      else
+        {
+          f_pair = b.force;
+          l_pair = b.length;
+        }
+    check_range("lubrication: bonds (one pair, one wall)",
+                double(bonds.size()),
+                2.,
+                2.);
+    check_range("lubrication: closing pair and wall push apart (min force)",
+                std::min(f_pair, f_wall),
+                1e-12,
+                1e12);
+    check_range("lubrication: pair branch length / 0.205",
+                l_pair / 0.205,
+                1. - 1e-12,
+                1. + 1e-12);
+    check_range("lubrication: wall branch length / 0.11",
+                l_wall / 0.11,
+                1. - 1e-12,
+                1. + 1e-12);
+    const auto shares = Fidus::lubrication_stresslets(bonds, 4);
+    std::vector<dealii::SymmetricTensor<2, 3>> hand(4);
+    hand[0][0][0] = hand[1][0][0]   = -0.5 * f_pair * l_pair;
+    hand[2][1][1]                   = -f_wall * l_wall;
+    double                        d = 0.;
+    dealii::SymmetricTensor<2, 3> sum;
+    for (unsigned int p = 0; p < 4; ++p)
+      {
+        d = std::max(d, (shares[p] - hand[p]).norm());
+        sum += shares[p];
+      }
+    check_range("lubrication: max |S_i - hand| / (f l)",
+                d / (f_pair * l_pair),
+                0.,
+                1e-12);
+    check_range(
+      "lubrication: |sum_i S_i / V - Sigma_l| / |Sigma_l|",
+      (sum / volume - Fidus::lubrication_stress(bonds, volume)).norm() /
+        Fidus::lubrication_stress(bonds, volume).norm(),
+      0.,
+      1e-12);
+  }
   return exit_code();
 }

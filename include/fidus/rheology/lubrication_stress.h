@@ -22,6 +22,16 @@ namespace Fidus
   dealii::SymmetricTensor<2, 3>
   lubrication_stress(const std::vector<Contact::LubricationBond> &bonds,
                      double                                       volume);
+
+  /**
+   * Each particle's share of V Sigma_l (of @p n_particles): a pair bond's
+   * term -l f n (x) n is split equally between its two particles, a wall
+   * bond's goes to its particle, so that the shares add up to
+   * V lubrication_stress() (as contact_stresslets() for the contact part).
+   */
+  std::vector<dealii::SymmetricTensor<2, 3>>
+  lubrication_stresslets(const std::vector<Contact::LubricationBond> &bonds,
+                         std::size_t n_particles);
 } // namespace Fidus
 
 #endif
