@@ -235,9 +235,7 @@ namespace Fidus
         // the first to_level.size() of its owned system DoFs.
         constrained_rows.clear();
         const types::global_dof_index first =
-          system_velocity_dofs.n_elements() > 0 ?
-            *system_velocity_dofs.begin() :
-            0;
+          system_owned_dofs.n_elements() > 0 ? *system_owned_dofs.begin() : 0;
         for (unsigned int i = 0; i < to_level.size(); ++i)
           if (system_constraints.is_constrained(first + i))
             constrained_rows.emplace_back(i,
@@ -333,7 +331,7 @@ namespace Fidus
         // The system numbers velocities first: its velocity DoFs on this
         // rank are a contiguous range of the same length.
         const IndexSet system_owned = system.locally_owned_dofs();
-        system_velocity_dofs        = system_owned;
+        system_owned_dofs           = system_owned;
         to_level.assign(n_owned, numbers::invalid_unsigned_int);
         const FiniteElement<dim>            &system_fe = system.get_fe();
         std::vector<types::global_dof_index> system_dofs(
@@ -463,7 +461,7 @@ namespace Fidus
 
       std::vector<unsigned int> to_level;
       /// The system's locally owned DoFs (velocities first).
-      IndexSet                                     system_velocity_dofs;
+      IndexSet                                     system_owned_dofs;
       std::vector<std::pair<unsigned int, double>> constrained_rows;
       mutable VectorType                           mg_src, mg_dst;
     };
