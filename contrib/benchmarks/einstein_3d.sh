@@ -7,6 +7,7 @@
 # The sphere sits off the mesh's symmetry at (0.513, 0.493, 0.507).
 # Usage: contrib/benchmarks/einstein_3d.sh ["a:L1,L2,..." ...]
 #        (default: "0.2:4,5,6" "0.1:5,6,7")
+# RETRACTIONS="0.3" (default "0 0.3") chooses the Solid retraction values.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -22,7 +23,7 @@ echo "|---|---|---|---|---|---|---|---|"
 for c in "${cases[@]}"; do
   a=${c%%:*}
   IFS=',' read -r -a levels <<< "${c#*:}"
-  for retraction in 0 0.3; do
+  for retraction in ${RETRACTIONS:-0 0.3}; do
     previous=""
     for level in "${levels[@]}"; do
       out="$work/run_${a}_${retraction}_$level"

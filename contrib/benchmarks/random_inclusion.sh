@@ -6,6 +6,8 @@
 # and mean |U| / (g a) (exact 0) and relative omega error.
 # Usage: contrib/benchmarks/random_inclusion.sh [a, default 0.05] [levels, default "6 7 8"] [N, default 6]
 # FIDUS=<binary> uses another build; OLD=<binary> adds the same rows for it.
+# FLUID="Entry = value; Entry = value" sets entries of subsection Fluid,
+# LABEL=<text> names the rows (default: the binary's name).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -14,8 +16,9 @@ a="${1:-0.05}"; levels="${2:-6 7 8}"; n="${3:-6}"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
 positions=$(awk -v n="$n" 'BEGIN { srand(7); for (i = 0; i < n; ++i) printf "%.6f,%.6f\n", 0.4 + 0.2 * rand(), 0.4 + 0.2 * rand() }')
 
-echo "| binary | level | max \|U\|/(g a) | mean \|U\|/(g a) | max omega error | mean omega error |"
-echo "|---|---|---|---|---|---|"
+fluid_settings=$(echo "${FLUID:-}" | tr ';' '\n' | sed '/^ *$/d; s/^ */  set /')
+echo "| binary | level | max \|U\|/(g a) | mean \|U\|/(g a) | max omega error | mean omega error | Uzawa (mean) | FGMRES (mean) |"
+echo "|---|---|---|---|---|---|---|---|"
 for binary in ${OLD:-} "$fidus"; do
   for level in $levels; do
     rm -f "$work/errors.txt"
@@ -25,6 +28,9 @@ set Dimension = 2
 set Output directory = $work/out
 subsection Domain
   set Boundary condition = exact rigid inclusion
+end
+subsection Fluid
+$fluid_settings
 end
 subsection Particles
   set Radius = $a
@@ -40,10 +46,13 @@ subsection Mesh refinement
 end
 EOF2
       "$binary" "$work/run.prm" 2> /dev/null | grep "exact rigid inclusion" |
-        sed 's/.*relative omega error \([^,]*\), |U|\/(g a) \(.*\)/\2 \1/' >> "$work/errors.txt"
+        sed 's/.*relative omega error \([^,]*\), |U|\/(g a) \(.*\)/\2 \1/' | tr '\n' ' ' >> "$work/errors.txt"
+      awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i }
+               NR == 2 { print $c["uzawa_iterations"], $c["linear_iterations"] }' \
+        "$work/out/statistics.csv" >> "$work/errors.txt"
     done
-    awk -v b="$(basename "$binary")" -v l="$level" '
-      { if ($1 > mu) mu = $1; su += $1; if ($2 > mw) mw = $2; sw += $2; k++ }
-      END { printf "| %s | %d | %.2e | %.2e | %.2e | %.2e |\n", b, l, mu, su / k, mw, sw / k }' "$work/errors.txt"
+    awk -v b="${LABEL:-$(basename "$binary")}" -v l="$level" '
+      { if ($1 > mu) mu = $1; su += $1; if ($2 > mw) mw = $2; sw += $2; si += $3; sf += $4; k++ }
+      END { printf "| %s | %d | %.2e | %.2e | %.2e | %.2e | %.1f | %.0f |\n", b, l, mu, su / k, mw, sw / k, si / k, sf / k }' "$work/errors.txt"
   done
 done

@@ -195,19 +195,21 @@ namespace Fidus
 
     prm.enter_subsection("Fluid");
     {
-      fluid_model          = prm.get("Model") == "fictitious domain" ?
-                               FluidModel::fictitious_domain :
-                               FluidModel::undisturbed_shear;
-      viscosity            = prm.get_double("Viscosity");
-      penalty_factor       = prm.get_double("Penalty factor");
-      velocity_degree      = prm.get_integer("Velocity degree");
-      rigidity_tolerance   = prm.get_double("Rigidity tolerance");
-      max_uzawa_iterations = prm.get_integer("Maximum Uzawa iterations");
-      reuse_multiplier     = prm.get_bool("Reuse multiplier");
-      release_shared_cells = prm.get("Shared cells") == "fluid";
-      solid_retraction     = prm.get_double("Solid retraction");
-      lubrication          = prm.get_bool("Lubrication correction");
-      lubrication_range    = prm.get_double("Lubrication range");
+      fluid_model              = prm.get("Model") == "fictitious domain" ?
+                                   FluidModel::fictitious_domain :
+                                   FluidModel::undisturbed_shear;
+      viscosity                = prm.get_double("Viscosity");
+      penalty_factor           = prm.get_double("Penalty factor");
+      velocity_degree          = prm.get_integer("Velocity degree");
+      rigidity_tolerance       = prm.get_double("Rigidity tolerance");
+      rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
+      sliver_threshold         = prm.get_double("Sliver threshold");
+      max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
+      reuse_multiplier         = prm.get_bool("Reuse multiplier");
+      release_shared_cells     = prm.get("Shared cells") == "fluid";
+      solid_retraction         = prm.get_double("Solid retraction");
+      lubrication              = prm.get_bool("Lubrication correction");
+      lubrication_range        = prm.get_double("Lubrication range");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");

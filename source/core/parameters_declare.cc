@@ -90,6 +90,26 @@ namespace Fidus
                         "work-precision optimum (doc/performance.md): with "
                         "the default penalty factor the velocity error is "
                         "already at the discretisation error there.");
+      prm.declare_entry(
+        "Rigid velocity tolerance",
+        "0",
+        Patterns::Double(0.),
+        "Uzawa stop on what the time loop uses instead: the particles' "
+        "rigid velocities changed in the last iteration by less than this, "
+        "|dU| / (g a) and |d omega| / g with g the box's rms shear rate "
+        "(column rigid_velocity_change of statistics.csv). 0 (default): "
+        "stop on Rigidity tolerance. The strain left in the solid falls "
+        "slowly on cut-cell slivers that barely move the particles "
+        "(doc/fluid.md).");
+      prm.declare_entry(
+        "Sliver threshold",
+        "0",
+        Patterns::Double(0., 1.),
+        "Cells whose share of solid quadrature points is below this value "
+        "(in [0, 1]) are held rigid by the penalty alone: the multiplier "
+        "and the rigidity residual leave them out (their strain is "
+        "reported in shared_residual). 0 (default): every cell that meets "
+        "the solid is constrained.");
       prm.declare_entry("Maximum Uzawa iterations",
                         "50",
                         Patterns::Integer(1, 10000),

@@ -76,6 +76,8 @@ namespace Fidus
       // Particle-particle and particle-wall gaps that the lubrication
       // correction acted on in this step.
       c.push_back("lubrication_pairs");
+      // The Uzawa loop's last change of the rigid velocities.
+      c.push_back("rigid_velocity_change");
       return c;
     }
   } // namespace OutputColumns

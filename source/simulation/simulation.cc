@@ -151,6 +151,8 @@ namespace Fidus
     ss.viscosity                  = prm.viscosity;
     ss.penalty_factor             = prm.penalty_factor;
     ss.rigidity_tolerance         = prm.rigidity_tolerance;
+    ss.rigid_velocity_tolerance   = prm.rigid_velocity_tolerance;
+    ss.sliver_threshold           = prm.sliver_threshold;
     ss.max_uzawa_iterations       = prm.max_uzawa_iterations;
     ss.linear_tolerance           = prm.linear_tolerance;
     ss.max_cheap_iterations       = prm.max_cheap_iterations;
@@ -664,11 +666,20 @@ namespace Fidus
     m << "step " << state.step << ", t = " << state.time
       << ": the Uzawa loop stopped after " << fluid_stats.uzawa_iterations
       << (fluid_stats.uzawa_iterations == 1 ? " iteration" : " iterations")
-      << " at rigidity residual " << fluid_stats.rigidity_residual << " > "
-      << prm.rigidity_tolerance
-      << (fluid_stats.uzawa_stalled ?
-            " (no progress in the last iteration; Fluid/Rigidity tolerance)" :
-            " (Fluid/Maximum Uzawa iterations)");
+      << " at rigidity residual " << fluid_stats.rigidity_residual;
+    if (prm.rigid_velocity_tolerance > 0.)
+      m << ", rigid velocity change " << fluid_stats.rigid_velocity_change
+        << " > " << prm.rigid_velocity_tolerance
+        << (fluid_stats.uzawa_stalled ?
+              " (no progress in the last iteration; Fluid/Rigid velocity "
+              "tolerance)" :
+              " (Fluid/Maximum Uzawa iterations)");
+    else
+      m << " > " << prm.rigidity_tolerance
+        << (fluid_stats.uzawa_stalled ?
+              " (no progress in the last iteration; Fluid/Rigidity "
+              "tolerance)" :
+              " (Fluid/Maximum Uzawa iterations)");
     warnings.warn("rigidity not reached",
                   m.str(),
                   state.step,

@@ -144,6 +144,7 @@ namespace Fidus
       row.push_back(v);
     row.push_back(
       double(lubrication_stats.n_pairs + lubrication_stats.n_wall_pairs));
+    row.push_back(fluid_stats.rigid_velocity_change);
     statistics_csv->write_row(row);
 
     if (field_output && s.step % prm.field_output_interval == 0)

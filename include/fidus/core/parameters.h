@@ -95,11 +95,15 @@ namespace Fidus
     std::string           shear_rate         = "1";
 
     // Fluid
-    FluidModel   fluid_model          = FluidModel::fictitious_domain;
-    double       viscosity            = 1.;
-    double       penalty_factor       = 1e3;
-    unsigned int velocity_degree      = 2;
-    double       rigidity_tolerance   = 1e-3;
+    FluidModel   fluid_model        = FluidModel::fictitious_domain;
+    double       viscosity          = 1.;
+    double       penalty_factor     = 1e3;
+    unsigned int velocity_degree    = 2;
+    double       rigidity_tolerance = 1e-3;
+    /// Uzawa stop on the change of the rigid velocities (0: off).
+    double rigid_velocity_tolerance = 0.;
+    /// Solid share of a cell below which the multiplier leaves it out.
+    double       sliver_threshold     = 0.;
     unsigned int max_uzawa_iterations = 50;
     bool         reuse_multiplier     = true;
     bool         release_shared_cells = false;

@@ -12,6 +12,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <fidus/fluid/velocity_block.h>
+#include <fidus/particles/rigid_motion.h>
 #include <fidus/particles/solid_indicator.h>
 #include <memory>
 #include <set>
@@ -45,10 +46,16 @@ namespace Fidus
     /// Solver settings (see Parameters for their meaning).
     struct Settings
     {
-      unsigned int degree                    = 2;
-      double       viscosity                 = 1.;
-      double       penalty_factor            = 1e3;
-      double       rigidity_tolerance        = 1e-3;
+      unsigned int degree             = 2;
+      double       viscosity          = 1.;
+      double       penalty_factor     = 1e3;
+      double       rigidity_tolerance = 1e-3;
+      /// Uzawa stop on the particles' rigid velocities instead of the
+      /// strain in the solid (0: off; see solve()).
+      double rigid_velocity_tolerance = 0.;
+      /// Cells whose share of solid quadrature points is below this are
+      /// held rigid by the penalty alone, not by the multiplier (0: off).
+      double       sliver_threshold          = 0.;
       unsigned int max_uzawa_iterations      = 50;
       double       linear_tolerance          = 1e-6;
       unsigned int max_cheap_iterations      = 1000;
@@ -91,6 +98,10 @@ namespace Fidus
       unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
       unsigned int expensive_solves  = 0;
       double       rigidity_residual = 0.;
+      /// Largest change of a particle's rigid velocity in the last Uzawa
+      /// iteration, |dU|/(g a) or |d omega|/g with g the box's rms shear
+      /// rate sqrt(2 <e(u):e(u)>); NaN after a single iteration.
+      double rigid_velocity_change = 0.;
       /// Cells whose solid was released (Settings::release_shared_cells),
       /// and the rigidity residual of the solid in them (reported only).
       unsigned int shared_cells    = 0;
@@ -272,11 +283,26 @@ namespace Fidus
                     const Function<dim>       *fluid_viscosity);
     void
     assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
-    /// sqrt(int |e(u)|^2 / int_box |e(u)|^2) over the solid outside shared
-    /// cells (what the Uzawa loop drives down), and over the solid in
-    /// shared cells (released, reported only).
-    std::pair<double, double>
+    /// What rigidity_residual() measures.
+    struct RigidityResidual
+    {
+      /// sqrt(int |e(u)|^2 / int_box |e(u)|^2) over the solid outside
+      /// shared cells (what the Uzawa loop drives down by default).
+      double held = 0.;
+      /// The same over the solid in shared cells (released, reported only).
+      double released = 0.;
+      /// The box's rms shear rate sqrt(2 int_box |e(u)|^2 / |box|).
+      double shear_rate = 0.;
+    };
+    RigidityResidual
     rigidity_residual(const SolidIndicator<dim> &solid) const;
+    /// Largest change of a particle's rigid velocity between @p previous
+    /// and @p current, scaled by @p shear_rate (Statistics).
+    static double
+    rigid_velocity_change(const std::vector<RigidMotion> &previous,
+                          const std::vector<RigidMotion> &current,
+                          const SolidIndicator<dim>      &solid,
+                          double                          shear_rate);
     unsigned int
     solve_linear(Statistics &stats);
     /// After assemble_system(): the Jacobi of the pressure mass, the velocity
@@ -341,6 +367,10 @@ namespace Fidus
 
     /// Shared cells of the last assembly, and how many (all ranks).
     std::vector<bool> shared;
+    /// Per active cell: its solid is a sliver (a share of its quadrature
+    /// points below Settings::sliver_threshold), held by the penalty alone,
+    /// without the multiplier.
+    std::vector<bool> sliver;
     unsigned int      n_shared_cells = 0;
 
     std::vector<unsigned int>    periodic_directions;
