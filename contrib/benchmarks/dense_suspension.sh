@@ -13,7 +13,8 @@
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
 # MAX_UZAWA=<n> (default 3), SHARED_CELLS=rigid|fluid (default rigid) and
 # REUSE=true|false (default true) set Fluid/Maximum Uzawa iterations,
-# Fluid/Shared cells and Fluid/Reuse multiplier.
+# Fluid/Shared cells and Fluid/Reuse multiplier; INEXACT=<factor> (default
+# 0) sets Fluid/Linear solver/Inexact Uzawa factor.
 # Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
@@ -60,6 +61,9 @@ subsection Fluid
   set Maximum Uzawa iterations = ${MAX_UZAWA:-3}
   set Shared cells = ${SHARED_CELLS:-rigid}
   set Reuse multiplier = ${REUSE:-true}
+  subsection Linear solver
+    set Inexact Uzawa factor = ${INEXACT:-0}
+  end
 end
 subsection Particles
   set Radius = $a

@@ -212,6 +212,7 @@ namespace Fidus
       lubrication_range        = prm.get_double("Lubrication range");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
+      inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
       max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
       max_linear_iterations     = prm.get_integer("Maximum iterations");
       amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");

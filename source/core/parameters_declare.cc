@@ -171,6 +171,19 @@ namespace Fidus
                           Patterns::Double(0., 1.),
                           "FGMRES stop: residual below this value times the "
                           "norm of the right-hand side, in (0, 1).");
+        prm.declare_entry(
+          "Inexact Uzawa factor",
+          "0",
+          Patterns::Double(0., 1.),
+          "Inexact Uzawa, in [0, 1]: inside the Uzawa loop, FGMRES stops at "
+          "this factor times the loop's tolerance (Rigidity tolerance, or "
+          "Rigid velocity tolerance when that is set), never below "
+          "Tolerance. The solve predicted to be the loop's last (from its "
+          "contraction so far, and the first one with Reuse multiplier = "
+          "true) goes to Tolerance, and a loop that ends on an inexact solve "
+          "repeats it to Tolerance: the velocity handed on always meets "
+          "Tolerance. 0: every solve to Tolerance (measured in "
+          "doc/fluid.md).");
         prm.declare_entry("Maximum cheap iterations",
                           "1000",
                           Patterns::Integer(0, 100000),

@@ -155,6 +155,7 @@ namespace Fidus
     ss.sliver_threshold           = prm.sliver_threshold;
     ss.max_uzawa_iterations       = prm.max_uzawa_iterations;
     ss.linear_tolerance           = prm.linear_tolerance;
+    ss.inexact_uzawa_factor       = prm.inexact_uzawa_factor;
     ss.max_cheap_iterations       = prm.max_cheap_iterations;
     ss.max_linear_iterations      = prm.max_linear_iterations;
     ss.amg_aggregation_threshold  = prm.amg_aggregation_threshold;

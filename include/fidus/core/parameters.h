@@ -115,6 +115,7 @@ namespace Fidus
     bool         lubrication                = false;
     double       lubrication_range          = 2.;
     double       linear_tolerance           = 1e-6;
+    double       inexact_uzawa_factor       = 0.;
     unsigned int max_cheap_iterations       = 1000;
     unsigned int max_linear_iterations      = 1000;
     double       amg_aggregation_threshold  = 0.;

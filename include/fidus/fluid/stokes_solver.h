@@ -55,9 +55,14 @@ namespace Fidus
       double rigid_velocity_tolerance = 0.;
       /// Cells whose share of solid quadrature points is below this are
       /// held rigid by the penalty alone, not by the multiplier (0: off).
-      double       sliver_threshold          = 0.;
-      unsigned int max_uzawa_iterations      = 50;
-      double       linear_tolerance          = 1e-6;
+      double       sliver_threshold     = 0.;
+      unsigned int max_uzawa_iterations = 50;
+      double       linear_tolerance     = 1e-6;
+      /// Inexact Uzawa: the FGMRES solves inside the loop stop at this
+      /// factor times the loop's own tolerance (never below
+      /// linear_tolerance); the final velocity is then carried on to
+      /// linear_tolerance. 0: every solve to linear_tolerance.
+      double       inexact_uzawa_factor      = 0.;
       unsigned int max_cheap_iterations      = 1000;
       unsigned int max_linear_iterations     = 1000;
       double       amg_aggregation_threshold = 0.;
@@ -303,8 +308,10 @@ namespace Fidus
                           const std::vector<RigidMotion> &current,
                           const SolidIndicator<dim>      &solid,
                           double                          shear_rate);
+    /// One FGMRES solve of the current system, from zero, to @p tolerance
+    /// (relative to the right-hand side).
     unsigned int
-    solve_linear(Statistics &stats);
+    solve_linear(Statistics &stats, double tolerance);
     /// After assemble_system(): the Jacobi of the pressure mass, the velocity
     /// V-cycle (AMG, or the new viscosity of the GMG levels) and the
     /// rigid-body correction (stokes_solver_preconditioners.cc).
@@ -319,7 +326,9 @@ namespace Fidus
     /// preconditioner.
     template <class VelocityPreconditioner>
     unsigned int
-    solve_linear(Statistics &stats, const VelocityPreconditioner &velocity);
+    solve_linear(Statistics                   &stats,
+                 const VelocityPreconditioner &velocity,
+                 double                        tolerance);
     /// Whether the solid of @p cell is released
     /// (Settings::release_shared_cells): within half a cell diameter of two
     /// particles (@p candidates: the particles near the cell), or touching a
