@@ -20,7 +20,8 @@
 #        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
 #         pair3d 6, dense2d, paper2d)
 #        VARIANTS="GMG true true;AMG true true" limits the runs to those
-#        (preconditioner, rigid-body correction, matrix-free) triples.
+#        (preconditioner, rigid-body correction, matrix-free) triples;
+#        AVERAGING= sets Multigrid viscosity averaging (default none).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -149,6 +150,7 @@ subsection Fluid
     set Preconditioner = $pc
     set Rigid-body correction = $rb
     set Matrix-free velocity block = $mf
+    set Multigrid viscosity averaging = ${AVERAGING:-none}
   end
 end
 subsection Output

@@ -136,6 +136,18 @@ namespace Fidus
           mg->apply_velocity_block(dst, src);
         });
     build_rigid_body_correction(solid);
+    if (settings.geometric_multigrid)
+      {
+        // Two products with each level's operator: a check of the
+        // hierarchy that costs a fraction of one V-cycle.
+        const double defect   = preconditioners->multigrid->galerkin_defect();
+        worst_galerkin_defect = std::max(worst_galerkin_defect, defect);
+        if (settings.verbose &&
+            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+          std::cout << "    multigrid: "
+                    << preconditioners->multigrid->get_info().n_levels
+                    << " levels, Galerkin defect " << defect << std::endl;
+      }
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::cout << "    rigid-body correction: "

@@ -1,10 +1,14 @@
+#include <algorithm>
 #include <cmath>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
@@ -48,6 +52,8 @@ namespace Fidus
     virtual void
     subtract_constraint_load(TrilinosWrappers::MPI::Vector       &rhs,
                              const TrilinosWrappers::MPI::Vector &g) const = 0;
+    virtual double
+    galerkin_defect() const = 0;
 
     Info info;
   };
@@ -75,6 +81,7 @@ namespace Fidus
         : triangulation(tria)
         , settings(settings)
         , fe(FE_Q<dim>(degree), dim)
+        , moment_fe(2 * degree)
       {}
 
       void
@@ -129,7 +136,7 @@ namespace Fidus
             matrix_free->reinit(mapping,
                                 dof_handlers[l],
                                 constraints[l],
-                                QGauss<1>(degree + 1),
+                                level_quadrature(l, n_levels),
                                 data);
             operators[l] = std::make_unique<Operator>();
             operators[l]->initialize(matrix_free);
@@ -139,6 +146,23 @@ namespace Fidus
                                   dof_handlers[l],
                                   constraints[l + 1],
                                   constraints[l]);
+        if (galerkin())
+          {
+            // The moments' space on every level and its transfers.
+            moment_dofs.resize(0, n_levels - 1);
+            moment_transfers.resize(0, n_levels - 1);
+            moments.resize(0, n_levels - 1);
+            for (unsigned int l = 0; l < n_levels; ++l)
+              {
+                moment_dofs[l].reinit(*level_meshes[l]);
+                moment_dofs[l].distribute_dofs(moment_fe);
+                moments[l].reinit(moment_dofs[l].locally_owned_dofs(),
+                                  moment_dofs[l].get_communicator());
+              }
+            for (unsigned int l = 0; l + 1 < n_levels; ++l)
+              moment_transfers[l + 1].reinit(moment_dofs[l + 1],
+                                             moment_dofs[l]);
+          }
         transfer =
           std::make_unique<MGTransferGlobalCoarsening<dim, VectorType>>(
             transfers,
@@ -162,9 +186,14 @@ namespace Fidus
         MGLevelObject<typename Smoother::AdditionalData> smoother_data(
           0,
           max_level);
+        if (galerkin())
+          compute_moments(viscosity);
         for (unsigned int l = 0; l <= max_level; ++l)
           {
-            fill_viscosity(l, viscosity);
+            if (galerkin() && l < max_level)
+              fill_galerkin_viscosity(l);
+            else
+              fill_viscosity(l, viscosity);
             operators[l]->compute_diagonal();
             smoother_data[l].preconditioner =
               operators[l]->get_matrix_diagonal_inverse();
@@ -185,11 +214,7 @@ namespace Fidus
           DoFTools::make_sparsity_pattern(dof0, sp, constraints[0]);
           sp.compress();
           coarse_matrix.reinit(sp);
-          MatrixFreeTools::compute_matrix(*operators[0]->get_matrix_free(),
-                                          constraints[0],
-                                          coarse_matrix,
-                                          &Operator::cell_term,
-                                          operators[0].get());
+          operators[0]->compute_matrix(constraints[0], coarse_matrix);
         }
         TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
         amg_data.elliptic              = true;
@@ -303,7 +328,122 @@ namespace Fidus
           r[i] -= mg_dst.local_element(to_level[i]);
       }
 
+      double
+      galerkin_defect() const override
+      {
+        double worst = 0.;
+        for (unsigned int l = 0; l < operators.max_level(); ++l)
+          {
+            VectorType v, w, Av, Aw;
+            operators[l]->initialize_dof_vector(v);
+            operators[l]->initialize_dof_vector(Av);
+            operators[l + 1]->initialize_dof_vector(w);
+            operators[l + 1]->initialize_dof_vector(Aw);
+            // The same pseudo-random vector on any number of ranks.
+            const IndexSet &owned = dof_handlers[l].locally_owned_dofs();
+            for (const auto i : owned)
+              v[i] = constraints[l].is_constrained(i) ?
+                       0. :
+                       std::sin(1.3 * i + 0.7) + 0.5 * std::cos(0.37 * i);
+            transfers[l + 1].prolongate_and_add(w, v);
+            operators[l]->vmult(Av, v);
+            operators[l + 1]->vmult(Aw, w);
+            const double coarse = v * Av, fine = w * Aw;
+            worst = std::max(worst, std::abs(coarse - fine) / fine);
+          }
+        return worst;
+      }
+
     private:
+      bool
+      galerkin() const
+      {
+        return settings.averaging == Averaging::galerkin;
+      }
+
+      /// The points of level @p l of @p n_levels: Gauss as the assembly, or
+      /// those of a Galerkin level below the finest.
+      Quadrature<1>
+      level_quadrature(const unsigned int l, const unsigned int n_levels) const
+      {
+        if (galerkin() && l + 1 < n_levels)
+          // The support points of FE_DGQ(2 degree).
+          return QGaussLobatto<1>(Operator::galerkin_points);
+        return QGauss<1>(Operator::gauss_points);
+      }
+
+      /// The moments L(l_Q) = sum over the finest Gauss points of eta JxW
+      /// l_Q, on the finest level, then restricted to every level below.
+      void
+      compute_moments(const ViscosityFunction &viscosity)
+      {
+        const unsigned int                   top = operators.max_level();
+        const QGauss<dim>                    quadrature(Operator::gauss_points);
+        FEValues<dim>                        fe_values(mapping,
+                                moment_fe,
+                                quadrature,
+                                update_values | update_quadrature_points |
+                                  update_JxW_values);
+        std::vector<types::global_dof_index> dofs(moment_fe.n_dofs_per_cell());
+        std::vector<double>                  eta(quadrature.size());
+        moments[top] = 0.;
+        for (const auto &cell : moment_dofs[top].active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              viscosity(cell, true, fe_values.get_quadrature_points(), eta);
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                {
+                  double sum = 0.;
+                  for (unsigned int q = 0; q < quadrature.size(); ++q)
+                    sum +=
+                      eta[q] * fe_values.JxW(q) * fe_values.shape_value(i, q);
+                  moments[top][dofs[i]] = sum;
+                }
+            }
+        for (unsigned int l = top; l > 0; --l)
+          {
+            moments[l - 1] = 0.;
+            moment_transfers[l].restrict_and_add(moments[l - 1], moments[l]);
+          }
+      }
+
+      /// Viscosity table of a Galerkin level: eta_Q = L(l_Q) / JxW_Q (the
+      /// FE_DGQ DoFs and the points are both lexicographic).
+      void
+      fill_galerkin_viscosity(const unsigned int l)
+      {
+        const MatrixFree<dim, double> &mf = *operators[l]->get_matrix_free();
+        typename Operator::template EvaluatorWith<Operator::galerkin_points>
+                                             phi(mf);
+        auto                                &table = operators[l]->viscosity;
+        std::vector<types::global_dof_index> dofs(moment_fe.n_dofs_per_cell());
+        AssertDimension(dofs.size(), phi.n_q_points);
+        table.reinit(mf.n_cell_batches(), phi.n_q_points);
+        for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
+          {
+            phi.reinit(batch);
+            for (unsigned int q = 0; q < phi.n_q_points; ++q)
+              table(batch, q) = 0.;
+            for (unsigned int lane = 0;
+                 lane < mf.n_active_entries_per_cell_batch(batch);
+                 ++lane)
+              {
+                const auto cell = mf.get_cell_iterator(batch, lane);
+                typename DoFHandler<dim>::active_cell_iterator moment_cell(
+                  &cell->get_triangulation(),
+                  cell->level(),
+                  cell->index(),
+                  &moment_dofs[l]);
+                moment_cell->get_dof_indices(dofs);
+                for (unsigned int q = 0; q < phi.n_q_points; ++q)
+                  table(batch, q)[lane] =
+                    moments[l][dofs[q]] / phi.JxW(q)[lane];
+              }
+          }
+      }
+
       void
       clear()
       {
@@ -314,6 +454,9 @@ namespace Fidus
         smoother.reset();
         transfer.reset();
         transfers.resize(0, 0);
+        moment_transfers.resize(0, 0);
+        moments.resize(0, 0);
+        moment_dofs.resize(0, 0);
         operators.resize(0, 0);
         constraints.resize(0, 0);
         dof_handlers.resize(0, 0);
@@ -435,7 +578,9 @@ namespace Fidus
       const parallel::distributed::Triangulation<dim> &triangulation;
       const Settings                                   settings;
       const FESystem<dim>                              fe;
-      const MappingQ1<dim>                             mapping;
+      /// The space of the Galerkin levels' viscosity moments.
+      const FE_DGQ<dim>    moment_fe;
+      const MappingQ1<dim> mapping;
 
       std::vector<std::shared_ptr<const Triangulation<dim>>>       level_meshes;
       MGLevelObject<DoFHandler<dim>>                               dof_handlers;
@@ -443,6 +588,9 @@ namespace Fidus
       MGLevelObject<std::unique_ptr<Operator>>                     operators;
       MGLevelObject<MGTwoLevelTransfer<dim, VectorType>>           transfers;
       std::unique_ptr<MGTransferGlobalCoarsening<dim, VectorType>> transfer;
+      MGLevelObject<DoFHandler<dim>>                               moment_dofs;
+      MGLevelObject<MGTwoLevelTransfer<dim, VectorType>> moment_transfers;
+      MGLevelObject<VectorType>                          moments;
 
       std::unique_ptr<MGSmootherPrecondition<Operator, Smoother, VectorType>>
                                                     smoother;
@@ -479,12 +627,14 @@ namespace Fidus
       return Averaging::arithmetic;
     if (name == "geometric")
       return Averaging::geometric;
+    if (name == "galerkin")
+      return Averaging::galerkin;
     if (!(name == "harmonic"))
       throw InputError("Fluid/Linear solver/Multigrid viscosity averaging "
                        "= '" +
                        name +
                        "': allowed are none, arithmetic, harmonic, "
-                       "geometric");
+                       "geometric, galerkin");
     return Averaging::harmonic;
   }
 
@@ -573,6 +723,15 @@ namespace Fidus
     const TrilinosWrappers::MPI::Vector &g) const
   {
     implementation->subtract_constraint_load(rhs, g);
+  }
+
+
+
+  template <int dim>
+  double
+  VelocityMultigrid<dim>::galerkin_defect() const
+  {
+    return implementation->galerkin_defect();
   }
 
 

@@ -256,10 +256,12 @@ namespace Fidus
     s.max_shared_residual     = state.totals.max_shared_residual;
     s.n_cells                 = fictitious ? tria->n_global_active_cells() : 0;
     s.n_dofs                  = fictitious ? solver->n_dofs() : 0;
-    s.wall_seconds            = elapsed_wall_seconds();
-    s.stop_signal             = stop_signal;
-    s.stress                  = stress;
-    s.solid_fraction          = hydrodynamic.solid_fraction;
+    s.multigrid_galerkin_defect =
+      fictitious ? solver->multigrid_galerkin_defect() : 0.;
+    s.wall_seconds   = elapsed_wall_seconds();
+    s.stop_signal    = stop_signal;
+    s.stress         = stress;
+    s.solid_fraction = hydrodynamic.solid_fraction;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
         {

@@ -224,6 +224,17 @@ namespace Fidus
       return dof_handler.n_dofs();
     }
 
+    /**
+     * With Preconditioner = GMG: the largest
+     * VelocityMultigrid::galerkin_defect() of any preconditioner set-up so
+     * far (round-off with Multigrid viscosity averaging = galerkin); else 0.
+     */
+    double
+    multigrid_galerkin_defect() const
+    {
+      return worst_galerkin_defect;
+    }
+
     /// Locally owned and ghost cells in mesh order (canonical_cell_order),
     /// for sums over cells that must not depend on the refinement history.
     const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
@@ -373,6 +384,8 @@ namespace Fidus
     /// Per locally owned velocity DoF: the solid entry (SolidIndicator) of
     /// the cells that hold it rigid, or -1.
     std::vector<int> solid_entry_of_dof;
+    /// See multigrid_galerkin_defect().
+    double worst_galerkin_defect = 0.;
 
     /// Shared cells of the last assembly, and how many (all ranks).
     std::vector<bool> shared;

@@ -31,11 +31,20 @@ namespace Fidus
    * - Matrix-free level operators (VelocityOperator), Chebyshev smoothing
    *   on the inverse diagonal, a coarse solve by CG with an AMG
    *   preconditioner on the assembled coarse matrix.
-   * - The viscosity on a level is asked from the owner at the level's
-   *   quadrature points (the particles are known exactly at every level) and
-   *   then, below the finest level, averaged over each cell by the chosen
-   *   rule. The finest level uses the point values, so its operator is the
-   *   system's A.
+   * - The finest level uses the owner's viscosity at its Gauss points, so
+   *   its operator is the system's A. Below it, either
+   *   - Averaging::galerkin: level l is the Galerkin product P^T A_{l+1} P,
+   *     hence of the finest A. The coarse functions are finest-level
+   *     functions, so their energy is the finest quadrature sum of eta
+   *     e(u):e(v) over the finest cells in each coarse cell; e(u):e(v) lies
+   *     in Q(2 degree) on the coarse cell, so the sum is a linear functional
+   *     of Q(2 degree), and a table on 2 degree + 1 equidistant points per
+   *     direction reproduces it exactly: eta_Q JxW_Q = L(l_Q), with l_Q the
+   *     Lagrange basis of FE_DGQ(2 degree). These moments L(l_Q) are
+   *     computed on the finest level and restricted level by level with the
+   *     FE_DGQ(2 degree) transfer (the transpose of the embedding);
+   *   - or the viscosity asked from the owner at the level's own quadrature
+   *     points, averaged over each cell by the chosen rule.
    */
   template <int dim>
   class VelocityMultigrid
@@ -47,7 +56,11 @@ namespace Fidus
       none,
       arithmetic,
       harmonic,
-      geometric
+      geometric,
+      /// No averaging: each level below the finest is the Galerkin product
+      /// P^T A P of the finest operator, exactly (see the class
+      /// documentation).
+      galerkin
     };
 
     /// Settings of the V-cycle.
@@ -82,7 +95,7 @@ namespace Fidus
                          const std::vector<Point<dim>> &points,
                          std::vector<double>           &eta)>;
 
-    /// Parse "none|arithmetic|harmonic|geometric".
+    /// Parse "none|arithmetic|harmonic|geometric|galerkin".
     static Averaging
     parse_averaging(const std::string &name);
 
@@ -114,6 +127,15 @@ namespace Fidus
     update(const ViscosityFunction              &viscosity,
            const TrilinosWrappers::SparseMatrix *velocity_block,
            const AffineConstraints<double>      &system_constraints);
+
+    /**
+     * Check of the hierarchy (after update()): for a random vector v on
+     * each level below the finest, with w = P v on the level above, the
+     * largest |v^T A_l v - w^T A_{l+1} w| / w^T A_{l+1} w. Round-off with
+     * Averaging::galerkin.
+     */
+    double
+    galerkin_defect() const;
 
     /// dst = one V-cycle applied to src (velocity block vectors).
     void

@@ -53,6 +53,8 @@ namespace Fidus
     /// and the largest rigidity residual in them.
     unsigned int max_shared_cells    = 0;
     double       max_shared_residual = 0.;
+    /// Largest StokesSolver::multigrid_galerkin_defect() of the run.
+    double multigrid_galerkin_defect = 0.;
     /// Cells and DoFs of the last solve.
     unsigned long long n_cells = 0, n_dofs = 0;
     /// Errors of the 'exact rigid inclusion' scene (else 0): L2 and H1 of u
