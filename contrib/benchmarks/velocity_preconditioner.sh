@@ -4,9 +4,9 @@
 # without the particles' rigid-body correction (Fluid/Linear solver/
 # Rigid-body correction), and GMG with the velocity block assembled instead
 # of applied matrix-free (Matrix-free velocity block = false). Scenes:
-#   inclusion3d L  one sphere (a = 0.2) off-centre, exact rigid inclusion,
-#                  maximum level L (one solve)
-#   inclusion2d L  one disc (a = 0.15) off-centre, exact rigid inclusion
+#   inclusion3d L [r]  one sphere (a = 0.2) off-centre, exact rigid inclusion,
+#                  maximum level L, penalty factor r (default 1e3)
+#   inclusion2d L [r]  one disc (a = 0.15) off-centre, exact rigid inclusion
 #   dense2d        prm/dense_suspension_2d.prm, first step (3 Uzawa solves)
 #   paper2d        prm/two_particles_2d.prm, gluey, the whole run
 #   spheres3d      24 spheres at volume fraction 0.25 between sliding walls,
@@ -19,9 +19,12 @@
 # Usage: contrib/benchmarks/velocity_preconditioner.sh [scene ...]
 #        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
 #         pair3d 6, dense2d, paper2d)
+#        TIMEOUT=s stops a run after s seconds and prints a row saying so.
 #        VARIANTS="GMG true true;AMG true true" limits the runs to those
-#        (preconditioner, rigid-body correction, matrix-free) triples;
-#        AVERAGING= sets Multigrid viscosity averaging (default none).
+#        (preconditioner, rigid-body correction, matrix-free[, averaging])
+#        variants; averaging is Multigrid viscosity averaging (default: the
+#        AVERAGING environment variable, else fidus's default), e.g.
+#        VARIANTS="AMG true true;GMG true true none;GMG true true galerkin".
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -30,7 +33,7 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
 scene_prm() {
-  local scene=$1 level=${2:-}
+  local scene=$1 level=${2:-} penalty=${3:-1e3}
   case $scene in
     inclusion2d|inclusion3d)
       local dim=${scene:9:1}
@@ -42,6 +45,9 @@ subsection Domain
   set Lower left = $ll
   set Upper right = $ur
   set Boundary condition = exact rigid inclusion
+end
+subsection Fluid
+  set Penalty factor = $penalty
 end
 subsection Particles
   set Radius = $r
@@ -140,7 +146,7 @@ EOF
 }
 
 run() {
-  local label=$1 pc=$2 rb=$3 mf=$4; shift 4
+  local label=$1 pc=$2 rb=$3 mf=$4 avg=$5; shift 5
   local prm="$work/run.prm"
   scene_prm "$@" > "$prm"
   cat >> "$prm" <<EOF
@@ -150,7 +156,7 @@ subsection Fluid
     set Preconditioner = $pc
     set Rigid-body correction = $rb
     set Matrix-free velocity block = $mf
-    set Multigrid viscosity averaging = ${AVERAGING:-none}
+$( [ "$avg" = default ] || echo "    set Multigrid viscosity averaging = $avg")
   end
 end
 subsection Output
@@ -161,12 +167,19 @@ end
 EOF
   local start=$(date +%s.%N)
   local log
-  log=$(/usr/bin/time -f "peak-kB %M" "$fidus" "$prm" 2>&1) || { echo "$label: run failed"; echo "$log" | tail -5; return; }
+  local status=0
+  log=$(timeout "${TIMEOUT:-0}" /usr/bin/time -f "peak-kB %M" "$fidus" "$prm" 2>&1) || status=$?
+  [ "$pc" = GMG ] || { mf=-; avg=-; }
+  if [ $status = 124 ]; then
+    printf "| %-18s | %s | %-5s | %-5s | %-8s | stopped after %s s |\n" "$label" "$pc" "$rb" "$mf" "$avg" "$TIMEOUT"
+    return
+  elif [ $status != 0 ]; then
+    echo "$label: run failed"; echo "$log" | tail -5; return
+  fi
   local wall=$(echo "$(date +%s.%N) - $start" | bc)
-  [ "$pc" = GMG ] || mf=-
   echo "$log" | /usr/bin/python3 -c '
 import re, sys
-label, pc, rb, mf, wall = sys.argv[1:6]
+label, pc, rb, mf, avg, wall = sys.argv[1:7]
 text = sys.stdin.read()
 cells = re.findall(r"cells (\d+)", text)
 # Per solve (verbose lines): the last "Uzawa k: ... FGMRES total N" before
@@ -182,21 +195,21 @@ assembly = sum(float(s) for s in re.findall(r"Stokes: assembly ([0-9.e-]+) s", t
 setup = sum(float(s) for s in re.findall(r"preconditioner set-up ([0-9.e-]+) s", text))
 peak = re.findall(r"peak-kB (\d+)", text)
 solve = sum(float(s) for s in re.findall(r"Uzawa/FGMRES ([0-9.e-]+) s", text))
-print("| %-14s | %s | %-5s | %-5s | %7s | %5d | %7d | %6.1f | %6.2f | %7.2f | %8.2f | %7.1f | %6.0f |" % (
-    label, pc, rb, mf, cells[-1] if cells else "?", sum(uz), sum(fg),
+print("| %-18s | %s | %-5s | %-5s | %-8s | %7s | %5d | %7d | %6.1f | %6.2f | %7.2f | %8.2f | %7.1f | %6.0f |" % (
+    label, pc, rb, mf, avg, cells[-1] if cells else "?", sum(uz), sum(fg),
     sum(fg) / max(sum(uz), 1), assembly, setup, solve, float(wall),
     int(peak[-1]) / 1024 if peak else float("nan")))
-' "$label" "$pc" "$rb" "$mf" "$wall"
+' "$label" "$pc" "$rb" "$mf" "$avg" "$wall"
 }
 
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=("inclusion2d 8" "inclusion3d 3" "inclusion3d 4" "inclusion3d 5" "pair3d 6" dense2d paper2d)
 IFS=';' read -r -a variants <<< "${VARIANTS:-AMG false true;AMG true true;GMG false true;GMG true false;GMG true true}"
-echo "| scene          | PC  | rigid | m-free | cells   | Uzawa | FGMRES  | /solve | assembly s | set-up s | solve s  | wall s  | peak MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| scene              | PC  | rigid | m-free | averaging | cells   | Uzawa | FGMRES  | /solve | assembly s | set-up s | solve s  | wall s  | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   for variant in "${variants[@]}"; do
-    # shellcheck disable=SC2086
-    run "$s" $variant $s
+    read -r pc rb mf avg <<< "$variant"
+    run "$s" "$pc" "$rb" "$mf" "${avg:-${AVERAGING:-default}}" $s
   done
 done

@@ -234,16 +234,16 @@ namespace Fidus
                           "level (matrix-vector products per smoothing).");
         prm.declare_entry(
           "Multigrid viscosity averaging",
-          "none",
+          "galerkin",
           Patterns::Selection("none|arithmetic|harmonic|geometric|galerkin"),
-          "How the viscosity (eta_f in the fluid, r eta_f in the solid) is "
-          "averaged over each cell of the GMG levels below the finest: none "
-          "(the point values at each level's own quadrature points, measured "
-          "fastest for particles: doc/preconditioners.md), or the arithmetic, harmonic "
-          "or geometric mean over the cell, or galerkin (no averaging: each "
-          "level is the exact Galerkin product of the finest operator, "
-          "doc/preconditioners.md). The finest level always uses the point "
-          "values of the assembly.");
+          "How the viscosity (eta_f in the fluid, r eta_f in the solid) "
+          "reaches the GMG levels below the finest: galerkin (no averaging: "
+          "each level is the exact Galerkin product of the finest operator, "
+          "so that particles smaller than a coarse cell stay in the coarse "
+          "levels; measured fastest for suspensions, doc/preconditioners.md), "
+          "none (the point values at each level's own quadrature points), or "
+          "the arithmetic, harmonic or geometric mean over the cell. The "
+          "finest level always uses the point values of the assembly.");
         prm.declare_entry(
           "Matrix-free velocity block",
           "true",

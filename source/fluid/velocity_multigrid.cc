@@ -25,6 +25,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/velocity_multigrid.h>
 #include <fidus/fluid/velocity_operator.h>
+#include <limits>
 
 namespace Fidus
 {
@@ -133,12 +134,14 @@ namespace Fidus
             data.mapping_update_flags =
               update_gradients | update_JxW_values | update_quadrature_points;
             auto matrix_free = std::make_shared<MatrixFree<dim, double>>();
-            matrix_free->reinit(mapping,
-                                dof_handlers[l],
-                                constraints[l],
-                                level_quadrature(l, n_levels),
-                                data);
-            operators[l] = std::make_unique<Operator>();
+            matrix_free->reinit(
+              mapping,
+              std::vector<const DoFHandler<dim> *>{&dof_handlers[l]},
+              std::vector<const AffineConstraints<double> *>{&constraints[l]},
+              level_quadratures(l, n_levels),
+              data);
+            operators[l]                 = std::make_unique<Operator>();
+            operators[l]->galerkin_level = galerkin_level(l, n_levels);
             operators[l]->initialize(matrix_free);
           }
         for (unsigned int l = 0; l + 1 < n_levels; ++l)
@@ -361,15 +364,23 @@ namespace Fidus
         return settings.averaging == Averaging::galerkin;
       }
 
-      /// The points of level @p l of @p n_levels: Gauss as the assembly, or
-      /// those of a Galerkin level below the finest.
-      Quadrature<1>
-      level_quadrature(const unsigned int l, const unsigned int n_levels) const
+      /// Whether level @p l of @p n_levels is a Galerkin level.
+      bool
+      galerkin_level(const unsigned int l, const unsigned int n_levels) const
       {
-        if (galerkin() && l + 1 < n_levels)
-          // The support points of FE_DGQ(2 degree).
-          return QGaussLobatto<1>(Operator::galerkin_points);
-        return QGauss<1>(Operator::gauss_points);
+        return galerkin() && l + 1 < n_levels;
+      }
+
+      /// The quadratures of level @p l of @p n_levels: Gauss as the
+      /// assembly, and on a Galerkin level also the support points of
+      /// FE_DGQ(2 degree) (VelocityOperator).
+      std::vector<Quadrature<1>>
+      level_quadratures(const unsigned int l, const unsigned int n_levels) const
+      {
+        std::vector<Quadrature<1>> q{QGauss<1>(Operator::gauss_points)};
+        if (galerkin_level(l, n_levels))
+          q.push_back(QGaussLobatto<1>(Operator::galerkin_points));
+        return q;
       }
 
       /// The moments L(l_Q) = sum over the finest Gauss points of eta JxW
@@ -410,14 +421,17 @@ namespace Fidus
       }
 
       /// Viscosity table of a Galerkin level: eta_Q = L(l_Q) / JxW_Q (the
-      /// FE_DGQ DoFs and the points are both lexicographic).
+      /// FE_DGQ DoFs and the points are both lexicographic), and which cell
+      /// batches have a uniform viscosity.
       void
       fill_galerkin_viscosity(const unsigned int l)
       {
         const MatrixFree<dim, double> &mf = *operators[l]->get_matrix_free();
         typename Operator::template EvaluatorWith<Operator::galerkin_points>
-                                             phi(mf);
-        auto                                &table = operators[l]->viscosity;
+              phi(mf, 0, 1);
+        auto &table   = operators[l]->viscosity;
+        auto &uniform = operators[l]->uniform_viscosity;
+        uniform.assign(mf.n_cell_batches(), 1);
         std::vector<types::global_dof_index> dofs(moment_fe.n_dofs_per_cell());
         AssertDimension(dofs.size(), phi.n_q_points);
         table.reinit(mf.n_cell_batches(), phi.n_q_points);
@@ -437,9 +451,22 @@ namespace Fidus
                   cell->index(),
                   &moment_dofs[l]);
                 moment_cell->get_dof_indices(dofs);
+                double low = std::numeric_limits<double>::max(), high = 0.;
                 for (unsigned int q = 0; q < phi.n_q_points; ++q)
-                  table(batch, q)[lane] =
-                    moments[l][dofs[q]] / phi.JxW(q)[lane];
+                  {
+                    const double eta = moments[l][dofs[q]] / phi.JxW(q)[lane];
+                    table(batch, q)[lane] = eta;
+                    low                   = std::min(low, eta);
+                    high                  = std::max(high, eta);
+                  }
+                // A cell wholly in the fluid or wholly in the solid: its
+                // values agree to round-off. Make them equal, so that the
+                // Gauss and the Gauss-Lobatto paths give the same operator.
+                if (high - low <= 1e-12 * high)
+                  for (unsigned int q = 0; q < phi.n_q_points; ++q)
+                    table(batch, q)[lane] = table(batch, 0)[lane];
+                else
+                  uniform[batch] = 0;
               }
           }
       }

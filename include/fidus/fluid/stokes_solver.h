@@ -72,7 +72,7 @@ namespace Fidus
       /// ML AMG.
       bool         geometric_multigrid    = false;
       unsigned int mg_smoother_degree     = 4;
-      std::string  mg_viscosity_averaging = "none";
+      std::string  mg_viscosity_averaging = "galerkin";
       /// With the geometric multigrid: multiply by the velocity block with
       /// the finest level's matrix-free operator and do not assemble it
       /// (false: assemble it as with the AMG).

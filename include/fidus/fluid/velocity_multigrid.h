@@ -70,7 +70,7 @@ namespace Fidus
       unsigned int smoother_degree     = 4;
       double       smoothing_range     = 15.;
       unsigned int eigenvalue_cg_steps = 10;
-      Averaging    averaging           = Averaging::none;
+      Averaging    averaging           = Averaging::galerkin;
       /// Relative tolerance of the coarse CG.
       double coarse_tolerance = 1e-3;
     };

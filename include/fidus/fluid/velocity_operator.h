@@ -21,15 +21,20 @@ namespace Fidus
    * One object per multigrid level: eta is a table of values per cell batch
    * and quadrature point, filled by the owner (VelocityMultigrid).
    *
-   * Two point sets per direction, chosen by the MatrixFree object given to
-   * initialize():
-   * - degree + 1 Gauss points, as the assembly (the finest level, and every
-   *   level with point-value viscosities);
-   * - 2 degree + 1 equidistant points (galerkin_points): e(u):e(v) of two
-   *   Q(degree) functions lies in Q(2 degree), and on these points a viscosity
-   *   table can reproduce any linear functional of it exactly, which is how
-   *   VelocityMultigrid makes a coarse level the Galerkin product of the
-   *   finest one.
+   * Two kinds of level, chosen by the owner (galerkin_level):
+   * - degree + 1 Gauss points per direction, as the assembly (the finest
+   *   level, and every level with point-value viscosities);
+   * - a Galerkin level: its MatrixFree object holds the Gauss points as
+   *   quadrature 0 and the 2 degree + 1 Gauss-Lobatto points per direction
+   *   (galerkin_points) as quadrature 1. e(u):e(v) of two Q(degree)
+   *   functions lies in Q(2 degree), and on the Gauss-Lobatto points a
+   *   viscosity table reproduces any linear functional of it exactly, which
+   *   is how VelocityMultigrid makes a coarse level the Galerkin product of
+   *   the finest one. Where a cell's viscosity is the same at all its points
+   *   (uniform_viscosity), the Gauss points are exact as well and about
+   *   (2 degree + 1)^dim / (degree + 1)^dim times cheaper, so products with
+   *   the operator take them there; the diagonal and the coarse matrix,
+   *   computed once per set-up, take the Gauss-Lobatto points everywhere.
    *
    * Rows of DoFs with a Dirichlet constraint act as the identity (from
    * MatrixFreeOperators::Base), hanging-node and periodic constraints are
@@ -51,22 +56,32 @@ namespace Fidus
     using Evaluator     = EvaluatorWith<gauss_points>;
 
     /// The viscosity of cell batch @p batch at quadrature point @p q; the
-    /// table has one row per cell batch and one column per point.
+    /// table has one row per cell batch and one column per point of the
+    /// exact quadrature (the Gauss-Lobatto points on a Galerkin level).
     Table<2, VectorizedArray<double>> viscosity;
+
+    /// Whether this is a Galerkin level (set before initialize(); its
+    /// MatrixFree object then has the two quadratures described above).
+    bool galerkin_level = false;
+
+    /// On a Galerkin level, per cell batch: 1 if the viscosity is the same
+    /// at every point of each of its cells (all entries of its row of
+    /// viscosity are then equal per lane), else 0.
+    std::vector<unsigned char> uniform_viscosity;
 
     /**
      * Call @p f with std::integral_constant<int, n> for the number n of
-     * quadrature points per direction of this operator's MatrixFree object.
+     * points per direction of the quadrature that is exact on every cell,
+     * and the index of that quadrature in the MatrixFree object.
      */
     template <typename F>
     void
     with_points(F &&f) const
     {
-      if (this->data->get_n_q_points(0) ==
-          Utilities::pow(static_cast<unsigned int>(gauss_points), dim))
-        f(std::integral_constant<int, gauss_points>());
+      if (galerkin_level)
+        f(std::integral_constant<int, galerkin_points>(), 1u);
       else
-        f(std::integral_constant<int, galerkin_points>());
+        f(std::integral_constant<int, gauss_points>(), 0u);
     }
 
     /// Compute the inverse diagonal (the Chebyshev smoother's
@@ -78,12 +93,14 @@ namespace Fidus
         std::make_shared<DiagonalMatrix<VectorType>>();
       VectorType &diagonal = this->inverse_diagonal_entries->get_vector();
       this->data->initialize_dof_vector(diagonal);
-      with_points([&](auto n) {
+      with_points([&](auto n, const unsigned int quadrature) {
         MatrixFreeTools::compute_diagonal(
           *this->data,
           diagonal,
           &VelocityOperator::template cell_term<decltype(n)::value>,
-          this);
+          this,
+          0,
+          quadrature);
       });
       // Constrained rows (zero here) become the identity.
       for (auto &d : diagonal)
@@ -96,13 +113,15 @@ namespace Fidus
     compute_matrix(const AffineConstraints<double> &constraints,
                    MatrixType                      &matrix) const
     {
-      with_points([&](auto n) {
+      with_points([&](auto n, const unsigned int quadrature) {
         MatrixFreeTools::compute_matrix(
           *this->data,
           constraints,
           matrix,
           &VelocityOperator::template cell_term<decltype(n)::value>,
-          this);
+          this,
+          0,
+          quadrature);
       });
     }
 
@@ -127,7 +146,7 @@ namespace Fidus
     void
     compute_load(VectorType &dst, const VectorType &field) const
     {
-      with_points([&](auto n) {
+      with_points([&](auto n, const unsigned int) {
         this->data->cell_loop(
           &VelocityOperator::template plain_cell_range<decltype(n)::value>,
           this,
@@ -145,7 +164,7 @@ namespace Fidus
                      const VectorType                            &src,
                      const std::pair<unsigned int, unsigned int> &range) const
     {
-      EvaluatorWith<n_points> phi(data);
+      EvaluatorWith<n_points> phi(data, 0, n_points == gauss_points ? 0 : 1);
       for (unsigned int batch = range.first; batch < range.second; ++batch)
         {
           phi.reinit(batch);
@@ -158,29 +177,55 @@ namespace Fidus
     void
     apply_add(VectorType &dst, const VectorType &src) const override
     {
-      with_points([&](auto n) {
-        this->data->cell_loop(
-          &VelocityOperator::template cell_range<decltype(n)::value>,
-          this,
-          dst,
-          src);
-      });
+      if (galerkin_level)
+        this->data->cell_loop(&VelocityOperator::galerkin_cell_range,
+                              this,
+                              dst,
+                              src);
+      else
+        this->data->cell_loop(&VelocityOperator::cell_range, this, dst, src);
     }
 
-    template <int n_points>
     void
     cell_range(const MatrixFree<dim, double>               &data,
                VectorType                                  &dst,
                const VectorType                            &src,
                const std::pair<unsigned int, unsigned int> &range) const
     {
-      EvaluatorWith<n_points> phi(data);
+      Evaluator phi(data);
       for (unsigned int batch = range.first; batch < range.second; ++batch)
         {
           phi.reinit(batch);
           phi.read_dof_values(src);
-          cell_term<n_points>(phi);
+          cell_term<gauss_points>(phi);
           phi.distribute_local_to_global(dst);
+        }
+    }
+
+    /// A Galerkin level: the Gauss points where the viscosity is uniform
+    /// (cell_term then reads the first entries of the batch's row, all
+    /// equal), the Gauss-Lobatto points elsewhere.
+    void
+    galerkin_cell_range(
+      const MatrixFree<dim, double>               &data,
+      VectorType                                  &dst,
+      const VectorType                            &src,
+      const std::pair<unsigned int, unsigned int> &range) const
+    {
+      Evaluator                      gauss(data, 0, 0);
+      EvaluatorWith<galerkin_points> lobatto(data, 0, 1);
+      for (unsigned int batch = range.first; batch < range.second; ++batch)
+        {
+          auto apply = [&](auto &phi) {
+            phi.reinit(batch);
+            phi.read_dof_values(src);
+            cell_term(phi);
+            phi.distribute_local_to_global(dst);
+          };
+          if (uniform_viscosity[batch])
+            apply(gauss);
+          else
+            apply(lobatto);
         }
     }
   };
