@@ -20,6 +20,7 @@
 #        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
 #         pair3d 6, dense2d, paper2d)
 #        TIMEOUT=s stops a run after s seconds and prints a row saying so.
+#        NP=n runs on n MPI ranks (peak memory: the largest rank's).
 #        VARIANTS="GMG true true;AMG true true" limits the runs to those
 #        (preconditioner, rigid-body correction, matrix-free[, averaging])
 #        variants; averaging is Multigrid viscosity averaging (default: the
@@ -168,9 +169,15 @@ EOF
   local start=$(date +%s.%N)
   local log
   local status=0
-  log=$(timeout "${TIMEOUT:-0}" /usr/bin/time -f "peak-kB %M" "$fidus" "$prm" 2>&1) || status=$?
+  # timeout inside time, with SIGKILL: fidus answers SIGTERM by finishing
+  # its step, and a signal to time alone would leave fidus running.
+  local launcher=()
+  [ -z "${NP:-}" ] || launcher=(mpirun -np "$NP")
+  log=$(OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+    /usr/bin/time -f "peak-kB %M" timeout -s KILL "${TIMEOUT:-0}" \
+    "${launcher[@]}" "$fidus" "$prm" 2>&1) || status=$?
   [ "$pc" = GMG ] || { mf=-; avg=-; }
-  if [ $status = 124 ]; then
+  if [ $status = 124 ] || [ $status = 137 ]; then
     printf "| %-18s | %s | %-5s | %-5s | %-8s | stopped after %s s |\n" "$label" "$pc" "$rb" "$mf" "$avg" "$TIMEOUT"
     return
   elif [ $status != 0 ]; then
