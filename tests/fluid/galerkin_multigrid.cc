@@ -16,6 +16,7 @@
 //   values lose them; measured 0.15).
 
 #include "../fidus_test.h"
+#include "summary_tools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,27 +56,6 @@ run(const unsigned int dim,
       << "  set Maximum level = " << level << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
   return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
-}
-
-/// Largest difference of the particles' velocities (over a) and rotations.
-double
-difference(const Fidus::RunSummary &a,
-           const Fidus::RunSummary &b,
-           const double             radius)
-{
-  double d = 0.;
-  for (unsigned int p = 0; p < a.velocities.size(); ++p)
-    for (unsigned int c = 0; c < 3; ++c)
-      d = std::max({d,
-                    std::abs(a.velocities[p][c] - b.velocities[p][c]) / radius,
-                    std::abs(a.omegas[p][c] - b.omegas[p][c])});
-  return d;
-}
-
-double
-per_solve(const Fidus::RunSummary &s)
-{
-  return double(s.max_linear_iterations) / s.max_uzawa_iterations;
 }
 
 int

@@ -12,6 +12,7 @@
 //   the ML AMG (another preconditioner, the same system) below 1e-6.
 
 #include "../fidus_test.h"
+#include "summary_tools.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,21 +50,6 @@ run(const unsigned int dim,
     << "  set Maximum level = " << (dim == 2 ? 5 : 3) << "\nend\n"
     << "subsection Output\n  set Verbosity = quiet\nend\n";
   return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
-}
-
-/// Largest difference of the particles' velocities (over a) and rotations.
-double
-difference(const Fidus::RunSummary &a,
-           const Fidus::RunSummary &b,
-           const double             radius)
-{
-  double d = 0.;
-  for (unsigned int p = 0; p < a.velocities.size(); ++p)
-    for (unsigned int c = 0; c < 3; ++c)
-      d = std::max({d,
-                    std::abs(a.velocities[p][c] - b.velocities[p][c]) / radius,
-                    std::abs(a.omegas[p][c] - b.omegas[p][c])});
-  return d;
 }
 
 int

@@ -7,6 +7,7 @@
 // through the same code.
 
 #include "../fidus_test.h"
+#include "summary_tools.h"
 
 #include <cmath>
 #include <fidus/core/parameters.h>
@@ -42,12 +43,6 @@ run(const unsigned int dim,
       << "  set Maximum level = " << level << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
   return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
-}
-
-double
-per_solve(const Fidus::RunSummary &s)
-{
-  return double(s.max_linear_iterations) / s.max_uzawa_iterations;
 }
 
 int
