@@ -2,7 +2,6 @@
 #define fidus_fluid_velocity_operator_h
 
 #include <deal.II/base/table.h>
-#include <deal.II/base/utilities.h>
 #include <deal.II/base/vectorization.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/matrix_free/fe_evaluation.h>
