@@ -22,10 +22,13 @@
 #        TIMEOUT=s stops a run after s seconds and prints a row saying so.
 #        NP=n runs on n MPI ranks (peak memory: the largest rank's).
 #        VARIANTS="GMG true true;AMG true true" limits the runs to those
-#        (preconditioner, rigid-body correction, matrix-free[, averaging])
-#        variants; averaging is Multigrid viscosity averaging (default: the
-#        AVERAGING environment variable, else fidus's default), e.g.
-#        VARIANTS="AMG true true;GMG true true none;GMG true true galerkin".
+#        (preconditioner, rigid-body correction, matrix-free[, averaging
+#        [, smoother blocks]]) variants; averaging is Multigrid viscosity
+#        averaging (default: the AVERAGING environment variable, else
+#        fidus's default), smoother blocks is Multigrid smoother blocks,
+#        "none" or "cut" (cut cells; default: fidus's default), shown as
+#        "+none" or "+cut" after the averaging, e.g.
+#        VARIANTS="AMG true true;GMG true true none;GMG true true galerkin cut".
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -147,7 +150,7 @@ EOF
 }
 
 run() {
-  local label=$1 pc=$2 rb=$3 mf=$4 avg=$5; shift 5
+  local label=$1 pc=$2 rb=$3 mf=$4 avg=$5 blocks=$6; shift 6
   local prm="$work/run.prm"
   scene_prm "$@" > "$prm"
   cat >> "$prm" <<EOF
@@ -158,6 +161,7 @@ subsection Fluid
     set Rigid-body correction = $rb
     set Matrix-free velocity block = $mf
 $( [ "$avg" = default ] || echo "    set Multigrid viscosity averaging = $avg")
+$( [ "$blocks" = default ] || echo "    set Multigrid smoother blocks = ${blocks/cut/cut cells}")
   end
 end
 subsection Output
@@ -176,6 +180,7 @@ EOF
   log=$(OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
     /usr/bin/time -f "peak-kB %M" timeout -s KILL "${TIMEOUT:-0}" \
     "${launcher[@]}" "$fidus" "$prm" 2>&1) || status=$?
+  [ "$blocks" = default ] || avg="$avg+$blocks"
   [ "$pc" = GMG ] || { mf=-; avg=-; }
   if [ $status = 124 ] || [ $status = 137 ]; then
     printf "| %-18s | %s | %-5s | %-5s | %-8s | stopped after %s s |\n" "$label" "$pc" "$rb" "$mf" "$avg" "$TIMEOUT"
@@ -216,7 +221,7 @@ echo "| scene              | PC  | rigid | m-free | averaging | cells   | Uzawa 
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   for variant in "${variants[@]}"; do
-    read -r pc rb mf avg <<< "$variant"
-    run "$s" "$pc" "$rb" "$mf" "${avg:-${AVERAGING:-default}}" $s
+    read -r pc rb mf avg blocks <<< "$variant"
+    run "$s" "$pc" "$rb" "$mf" "${avg:-${AVERAGING:-default}}" "${blocks:-default}" $s
   done
 done

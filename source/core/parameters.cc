@@ -227,6 +227,7 @@ namespace Fidus
         (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);
       mg_smoother_degree         = prm.get_integer("Multigrid smoother degree");
       mg_viscosity_averaging     = prm.get("Multigrid viscosity averaging");
+      mg_smoother_blocks         = prm.get("Multigrid smoother blocks");
       rigid_body_correction      = prm.get_bool("Rigid-body correction");
       matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
       if (geometric_multigrid && velocity_degree > 3)

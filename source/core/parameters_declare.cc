@@ -233,6 +233,17 @@ namespace Fidus
                           "Degree of the Chebyshev smoother on each GMG "
                           "level (matrix-vector products per smoothing).");
         prm.declare_entry(
+          "Multigrid smoother blocks",
+          "cut cells",
+          Patterns::Selection("none|cut cells"),
+          "What the Chebyshev smoother of each GMG level inverts: none "
+          "(point Jacobi, the diagonal), or cut cells (an exact solve on "
+          "the DoFs of each cell that the particle surface cuts, additive "
+          "Schwarz, and the diagonal elsewhere), which contains the local "
+          "near-kernel of the penalty that point Jacobi cannot reduce: "
+          "half the iterations at r = 1e3 in 3D and a count that no longer "
+          "grows like r (doc/preconditioners.md).");
+        prm.declare_entry(
           "Multigrid viscosity averaging",
           "galerkin",
           Patterns::Selection("none|arithmetic|harmonic|geometric|galerkin"),

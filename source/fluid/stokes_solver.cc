@@ -210,6 +210,9 @@ namespace Fidus
         typename VelocityMultigrid<dim>::Settings mg;
         mg.degree          = settings.degree;
         mg.smoother_degree = settings.mg_smoother_degree;
+        mg.smoother_blocks = settings.mg_smoother_blocks == "cut cells" ?
+                               SmootherBlocks::cut_cells :
+                               SmootherBlocks::none;
         mg.averaging       = VelocityMultigrid<dim>::parse_averaging(
           settings.mg_viscosity_averaging);
         preconditioners->multigrid =

@@ -146,7 +146,12 @@ namespace Fidus
             Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
           std::cout << "    multigrid: "
                     << preconditioners->multigrid->get_info().n_levels
-                    << " levels, Galerkin defect " << defect << std::endl;
+                    << " levels, Galerkin defect " << defect
+                    << ", smoother blocks (rank 0) "
+                    << preconditioners->multigrid->get_info().smoother_blocks
+                    << ", update "
+                    << preconditioners->multigrid->get_info().update_seconds
+                    << " s" << std::endl;
       }
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

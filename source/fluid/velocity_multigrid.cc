@@ -23,6 +23,7 @@
 #include <deal.II/multigrid/multigrid.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/core/input_error.h>
+#include <fidus/fluid/cell_block_preconditioner.h>
 #include <fidus/fluid/velocity_multigrid.h>
 #include <fidus/fluid/velocity_operator.h>
 #include <limits>
@@ -73,9 +74,10 @@ namespace Fidus
       using Averaging = typename VelocityMultigrid<dim>::Averaging;
       using ViscosityFunction =
         typename VelocityMultigrid<dim>::ViscosityFunction;
-      using Operator = VelocityOperator<dim, degree>;
+      using Operator               = VelocityOperator<dim, degree>;
+      using SmootherPreconditioner = CellBlockPreconditioner<dim, degree>;
       using Smoother =
-        PreconditionChebyshev<Operator, VectorType, DiagonalMatrix<VectorType>>;
+        PreconditionChebyshev<Operator, VectorType, SmootherPreconditioner>;
 
       Hierarchy(const parallel::distributed::Triangulation<dim> &tria,
                 const Settings                                  &settings)
@@ -191,6 +193,7 @@ namespace Fidus
           max_level);
         if (galerkin())
           compute_moments(viscosity);
+        this->info.smoother_blocks = 0;
         for (unsigned int l = 0; l <= max_level; ++l)
           {
             if (galerkin() && l < max_level)
@@ -198,10 +201,23 @@ namespace Fidus
             else
               fill_viscosity(l, viscosity);
             operators[l]->compute_diagonal();
-            smoother_data[l].preconditioner =
-              operators[l]->get_matrix_diagonal_inverse();
-            smoother_data[l].degree              = settings.smoother_degree;
-            smoother_data[l].smoothing_range     = settings.smoothing_range;
+            // Level 0 is solved, not smoothed: no blocks there.
+            auto preconditioner = std::make_shared<SmootherPreconditioner>();
+            preconditioner->initialize(*operators[l],
+                                       dof_handlers[l],
+                                       constraints[l],
+                                       l > 0 ? settings.smoother_blocks :
+                                               SmootherBlocks::none);
+            this->info.smoother_blocks += preconditioner->n_blocks();
+            smoother_data[l].preconditioner = preconditioner;
+            smoother_data[l].degree         = settings.smoother_degree;
+            // Blocks shorten the spectrum's top: a narrower range then
+            // smooths more of it (3D level 4, r = 1e4: 44 FGMRES per solve
+            // with 8 against 47 with 15).
+            smoother_data[l].smoothing_range =
+              settings.smoother_blocks == SmootherBlocks::none ?
+                settings.smoothing_range :
+                settings.smoothing_range_with_blocks;
             smoother_data[l].eig_cg_n_iterations = settings.eigenvalue_cg_steps;
           }
         smoother = std::make_unique<

@@ -164,6 +164,7 @@ namespace Fidus
     ss.geometric_multigrid        = prm.geometric_multigrid;
     ss.mg_smoother_degree         = prm.mg_smoother_degree;
     ss.mg_viscosity_averaging     = prm.mg_viscosity_averaging;
+    ss.mg_smoother_blocks         = prm.mg_smoother_blocks;
     ss.rigid_body_correction      = prm.rigid_body_correction;
     ss.matrix_free_velocity_block = prm.matrix_free_velocity_block;
     ss.reuse_multiplier           = prm.reuse_multiplier;

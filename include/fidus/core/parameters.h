@@ -124,6 +124,7 @@ namespace Fidus
     bool         geometric_multigrid        = false;
     unsigned int mg_smoother_degree         = 4;
     std::string  mg_viscosity_averaging     = "none";
+    std::string  mg_smoother_blocks         = "cut cells";
     bool         rigid_body_correction      = true;
     bool         matrix_free_velocity_block = true;
 

@@ -21,8 +21,8 @@ namespace Fidus
    * modes of the solid. One V-cycle (AMG or geometric) does not see those
    * local modes; with 120 discs the cheap preconditioner needed about 390
    * FGMRES iterations per solve, against 31 with exact inner solves of the
-   * same blocks (doc/preconditioners.md). The correction Q = Z (Z^T A Z)^{-1} Z^T
-   * removes them: Z holds, for each particle, its rigid motions on the
+   * same blocks (doc/preconditioners.md). The correction Q = Z (Z^T A Z)^{-1}
+   * Z^T removes them: Z holds, for each particle, its rigid motions on the
    * velocity DoFs of the cells that meet its solid, zero elsewhere.
    *
    * Used multiplicatively around the V-cycle P

@@ -73,6 +73,8 @@ namespace Fidus
       bool         geometric_multigrid    = false;
       unsigned int mg_smoother_degree     = 4;
       std::string  mg_viscosity_averaging = "galerkin";
+      /// GMG smoother blocks: none or cut cells (VelocityMultigrid).
+      std::string mg_smoother_blocks = "cut cells";
       /// With the geometric multigrid: multiply by the velocity block with
       /// the finest level's matrix-free operator and do not assemble it
       /// (false: assemble it as with the AMG).

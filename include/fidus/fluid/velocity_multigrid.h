@@ -7,6 +7,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <fidus/fluid/cell_block_preconditioner.h>
 #include <functional>
 #include <memory>
 #include <set>
@@ -66,13 +67,18 @@ namespace Fidus
     /// Settings of the V-cycle.
     struct Settings
     {
-      unsigned int degree              = 2;
-      unsigned int smoother_degree     = 4;
-      double       smoothing_range     = 15.;
-      unsigned int eigenvalue_cg_steps = 10;
-      Averaging    averaging           = Averaging::galerkin;
+      unsigned int degree          = 2;
+      unsigned int smoother_degree = 4;
+      double       smoothing_range = 15.;
+      /// The range with smoother blocks (measured, doc/preconditioners.md).
+      double       smoothing_range_with_blocks = 8.;
+      unsigned int eigenvalue_cg_steps         = 10;
+      Averaging    averaging                   = Averaging::galerkin;
       /// Relative tolerance of the coarse CG.
       double coarse_tolerance = 1e-3;
+      /// Which cells the smoothers solve exactly as blocks instead of point
+      /// Jacobi (CellBlockPreconditioner).
+      SmootherBlocks smoother_blocks = SmootherBlocks::cut_cells;
     };
 
     /// Size and cost of the hierarchy.
@@ -82,6 +88,8 @@ namespace Fidus
       types::global_dof_index coarse_dofs    = 0;
       double                  setup_seconds  = 0.; ///< last setup()
       double                  update_seconds = 0.; ///< last update()
+      /// Blocks of the smoothers, summed over levels (this rank).
+      unsigned int smoother_blocks = 0;
     };
 
     /**
