@@ -207,7 +207,8 @@ namespace Fidus
                                        dof_handlers[l],
                                        constraints[l],
                                        l > 0 ? settings.smoother_blocks :
-                                               SmootherBlocks::none);
+                                               SmootherBlocks::none,
+                                       ghost_viscosity(l, viscosity));
             this->info.smoother_blocks += preconditioner->n_blocks();
             smoother_data[l].preconditioner = preconditioner;
             smoother_data[l].degree         = settings.smoother_degree;
@@ -434,6 +435,59 @@ namespace Fidus
             moments[l - 1] = 0.;
             moment_transfers[l].restrict_and_add(moments[l - 1], moments[l]);
           }
+      }
+
+      /// The viscosity of level @p l on a ghost cell, as fill_viscosity()
+      /// and fill_galerkin_viscosity() would put it in the operator's table
+      /// (for the smoother's blocks at the partition boundary).
+      typename SmootherPreconditioner::GhostViscosity
+      ghost_viscosity(const unsigned int l, const ViscosityFunction &viscosity)
+      {
+        if (Utilities::MPI::n_mpi_processes(
+              dof_handlers[l].get_communicator()) == 1)
+          return {};
+        const bool finest = l == operators.max_level();
+        if (galerkin() && !finest)
+          {
+            // The moments of the ghost cells.
+            IndexSet relevant;
+            DoFTools::extract_locally_relevant_dofs(moment_dofs[l], relevant);
+            auto ghosted =
+              std::make_shared<VectorType>(moment_dofs[l].locally_owned_dofs(),
+                                           relevant,
+                                           moment_dofs[l].get_communicator());
+            ghosted->copy_locally_owned_data_from(moments[l]);
+            ghosted->update_ghost_values();
+            return [this, l, ghosted](
+                     const typename DoFHandler<dim>::active_cell_iterator &cell,
+                     const FEValues<dim> &fe_values,
+                     std::vector<double> &eta) {
+              typename DoFHandler<dim>::active_cell_iterator moment_cell(
+                &cell->get_triangulation(),
+                cell->level(),
+                cell->index(),
+                &moment_dofs[l]);
+              std::vector<types::global_dof_index> dofs(
+                moment_fe.n_dofs_per_cell());
+              moment_cell->get_dof_indices(dofs);
+              eta.resize(fe_values.n_quadrature_points);
+              for (unsigned int q = 0; q < eta.size(); ++q)
+                eta[q] = (*ghosted)[dofs[q]] / fe_values.JxW(q);
+              const auto [low, high] =
+                std::minmax_element(eta.begin(), eta.end());
+              if (*high - *low <= 1e-12 * *high)
+                std::fill(eta.begin(), eta.end(), eta[0]);
+            };
+          }
+        return [this, finest, &viscosity](
+                 const typename DoFHandler<dim>::active_cell_iterator &cell,
+                 const FEValues<dim> &fe_values,
+                 std::vector<double> &eta) {
+          eta.resize(fe_values.n_quadrature_points);
+          viscosity(cell, finest, fe_values.get_quadrature_points(), eta);
+          if (!finest)
+            average(eta);
+        };
       }
 
       /// Viscosity table of a Galerkin level: eta_Q = L(l_Q) / JxW_Q (the

@@ -5,12 +5,17 @@
 #include <cmath>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <fidus/fluid/velocity_operator.h>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -65,16 +70,30 @@ namespace Fidus
     using Operator   = VelocityOperator<dim, degree>;
 
     /**
+     * The viscosity of the level at the quadrature points of @p fe_values
+     * (reinitialised on @p cell, a ghost cell), as the operator's table
+     * would hold it there.
+     */
+    using GhostViscosity = std::function<
+      void(const typename DoFHandler<dim>::active_cell_iterator &cell,
+           const FEValues<dim>                                  &fe_values,
+           std::vector<double>                                  &eta)>;
+
+    /**
      * Build the blocks of @p op (after its viscosity and inverse diagonal
      * are set): @p dofs and @p constraints are the level's DoF handler and
      * constraints, the ones its MatrixFree object was built with. With
-     * @p use_blocks false this is point Jacobi.
+     * @p use_blocks none this is point Jacobi. With @p ghost_viscosity the
+     * element matrices of the ghost cells complete the rows at the
+     * partition boundary, and ghost cut cells get blocks (on this rank's
+     * DoFs); without it, DoFs that a ghost cell touches stay in no block.
      */
     void
     initialize(const Operator                  &op,
                const DoFHandler<dim>           &dofs,
                const AffineConstraints<double> &constraints,
-               const SmootherBlocks             use_blocks)
+               const SmootherBlocks             use_blocks,
+               const GhostViscosity            &ghost_viscosity = {})
     {
       op.get_matrix_free()->initialize_dof_vector(point_inverse);
       point_inverse = op.get_matrix_diagonal_inverse()->get_vector();
@@ -105,12 +124,45 @@ namespace Fidus
           resolved_one.emplace_back(g, 1.);
       };
 
-      // Owned rows that a ghost cell touches are incomplete here.
+      // The ghost cells: with their viscosity, their element matrices
+      // complete the rows here; without it, the owned rows that they touch
+      // are incomplete here.
       std::vector<unsigned char>           complete(n_owned, 1);
       std::vector<types::global_dof_index> indices(dofs_per_cell);
+      std::unique_ptr<FEValues<dim>>       ghost_values;
+      op.with_points([&](auto n, const unsigned int quadrature) {
+        const QGauss<1>        gauss(decltype(n)::value);
+        const QGaussLobatto<1> lobatto(decltype(n)::value);
+        const Quadrature<dim>  points(quadrature == 0 ?
+                                       static_cast<Quadrature<1>>(gauss) :
+                                       static_cast<Quadrature<1>>(lobatto));
+        ghost_values =
+          std::make_unique<FEValues<dim>>(dofs.get_fe(),
+                                          points,
+                                          update_gradients | update_JxW_values |
+                                            update_quadrature_points);
+      });
+      struct GhostCell
+      {
+        typename DoFHandler<dim>::active_cell_iterator cell;
+        std::vector<double>                            eta;
+        bool                                           cut;
+      };
+      std::vector<GhostCell> ghosts;
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_ghost())
           {
+            if (ghost_viscosity)
+              {
+                GhostCell ghost{cell, {}, false};
+                ghost_values->reinit(cell);
+                ghost_viscosity(cell, *ghost_values, ghost.eta);
+                const auto [low, high] =
+                  std::minmax_element(ghost.eta.begin(), ghost.eta.end());
+                ghost.cut = *high - *low > 1e-12 * std::abs(*high);
+                ghosts.push_back(std::move(ghost));
+                continue;
+              }
             cell->get_dof_indices(indices);
             for (const auto g : indices)
               {
@@ -126,6 +178,26 @@ namespace Fidus
       // dearer set-up; doc/preconditioners.md.)
       const unsigned int        n_points = op.viscosity.size(1);
       std::vector<unsigned int> local;
+      auto add_block = [&](const std::vector<types::global_dof_index> &cell) {
+        local.clear();
+        for (const auto g : cell)
+          {
+            resolve(g);
+            for (const auto &[free, weight] : resolved_one)
+              if (owned.is_element(free))
+                {
+                  const unsigned int i = partitioner->global_to_local(free);
+                  if (complete[i])
+                    local.push_back(i);
+                }
+          }
+        std::sort(local.begin(), local.end());
+        local.erase(std::unique(local.begin(), local.end()), local.end());
+        if (local.empty())
+          return;
+        block_dofs.insert(block_dofs.end(), local.begin(), local.end());
+        block_start.push_back(block_dofs.size());
+      };
       for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
         for (unsigned int lane = 0;
              lane < mf.n_active_entries_per_cell_batch(batch);
@@ -140,24 +212,13 @@ namespace Fidus
             if (high - low <= 1e-12 * std::abs(high))
               continue;
             mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
-            local.clear();
-            for (const auto g : indices)
-              {
-                resolve(g);
-                for (const auto &[free, weight] : resolved_one)
-                  if (owned.is_element(free))
-                    {
-                      const unsigned int i = partitioner->global_to_local(free);
-                      if (complete[i])
-                        local.push_back(i);
-                    }
-              }
-            std::sort(local.begin(), local.end());
-            local.erase(std::unique(local.begin(), local.end()), local.end());
-            if (local.empty())
-              continue;
-            block_dofs.insert(block_dofs.end(), local.begin(), local.end());
-            block_start.push_back(block_dofs.size());
+            add_block(indices);
+          }
+      for (const GhostCell &ghost : ghosts)
+        if (ghost.cut)
+          {
+            ghost.cell->get_dof_indices(indices);
+            add_block(indices);
           }
       const unsigned int n_blocks = block_start.size() - 1;
 
@@ -201,13 +262,12 @@ namespace Fidus
           dofs_per_cell);
         std::vector<int> position(n_owned, -1);
 
-        auto free_dofs_of = [&](const unsigned int batch,
-                                const unsigned int lane) {
-          mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
+        // The free DoFs of a cell whose element matrix numbers its DoFs as
+        // cell_dofs; whether any is in a block.
+        auto resolve_cell = [&]() {
           bool any = false;
           for (unsigned int a = 0; a < dofs_per_cell; ++a)
             {
-              cell_dofs[a] = indices[lexicographic[a]];
               free[a].clear();
               resolve(cell_dofs[a]);
               for (const auto &[g, weight] : resolved_one)
@@ -219,6 +279,46 @@ namespace Fidus
                   }
             }
           return any;
+        };
+        auto free_dofs_of = [&](const unsigned int batch,
+                                const unsigned int lane) {
+          mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
+          for (unsigned int a = 0; a < dofs_per_cell; ++a)
+            cell_dofs[a] = indices[lexicographic[a]];
+          return resolve_cell();
+        };
+        // Add the element matrix of the cell last resolved to the blocks
+        // that share its DoFs.
+        auto scatter = [&](const FullMatrix<double> &matrix) {
+          cell_blocks.clear();
+          for (unsigned int a = 0; a < dofs_per_cell; ++a)
+            for (const auto &[i, weight] : free[a])
+              for (unsigned int h = holder_start[i]; h < holder_start[i + 1];
+                   ++h)
+                cell_blocks.push_back(holders[h]);
+          std::sort(cell_blocks.begin(), cell_blocks.end());
+          cell_blocks.erase(std::unique(cell_blocks.begin(), cell_blocks.end()),
+                            cell_blocks.end());
+          for (const unsigned int b : cell_blocks)
+            {
+              for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
+                position[block_dofs[k]] = k - block_start[b];
+              for (unsigned int a = 0; a < dofs_per_cell; ++a)
+                {
+                  in_block[a].clear();
+                  for (const auto &[i, weight] : free[a])
+                    if (position[i] >= 0)
+                      in_block[a].emplace_back(position[i], weight);
+                }
+              FullMatrix<double> &block = blocks[b];
+              for (unsigned int a = 0; a < dofs_per_cell; ++a)
+                for (const auto &[p, wp] : in_block[a])
+                  for (unsigned int c = 0; c < dofs_per_cell; ++c)
+                    for (const auto &[q, wq] : in_block[c])
+                      block(p, q) += wp * wq * matrix(a, c);
+              for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
+                position[block_dofs[k]] = -1;
+            }
         };
 
         for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
@@ -248,42 +348,32 @@ namespace Fidus
                 if (!touches[lane])
                   continue;
                 free_dofs_of(batch, lane);
-                cell_blocks.clear();
-                for (unsigned int a = 0; a < dofs_per_cell; ++a)
-                  for (const auto &[i, weight] : free[a])
-                    for (unsigned int h = holder_start[i];
-                         h < holder_start[i + 1];
-                         ++h)
-                      cell_blocks.push_back(holders[h]);
-                std::sort(cell_blocks.begin(), cell_blocks.end());
-                cell_blocks.erase(std::unique(cell_blocks.begin(),
-                                              cell_blocks.end()),
-                                  cell_blocks.end());
-                for (const unsigned int b : cell_blocks)
-                  {
-                    for (unsigned int k = block_start[b];
-                         k < block_start[b + 1];
-                         ++k)
-                      position[block_dofs[k]] = k - block_start[b];
-                    for (unsigned int a = 0; a < dofs_per_cell; ++a)
-                      {
-                        in_block[a].clear();
-                        for (const auto &[i, weight] : free[a])
-                          if (position[i] >= 0)
-                            in_block[a].emplace_back(position[i], weight);
-                      }
-                    FullMatrix<double> &block = blocks[b];
-                    for (unsigned int a = 0; a < dofs_per_cell; ++a)
-                      for (const auto &[p, wp] : in_block[a])
-                        for (unsigned int c = 0; c < dofs_per_cell; ++c)
-                          for (const auto &[q, wq] : in_block[c])
-                            block(p, q) += wp * wq * element[lane](a, c);
-                    for (unsigned int k = block_start[b];
-                         k < block_start[b + 1];
-                         ++k)
-                      position[block_dofs[k]] = -1;
-                  }
+                scatter(element[lane]);
               }
+          }
+
+        // The ghost cells, with FEValues on the same points: 2 eta e(u):e(v).
+        const FEValuesExtractors::Vector     velocity(0);
+        std::vector<SymmetricTensor<2, dim>> strain(dofs_per_cell);
+        for (const GhostCell &ghost : ghosts)
+          {
+            ghost.cell->get_dof_indices(cell_dofs);
+            if (!resolve_cell())
+              continue;
+            ghost_values->reinit(ghost.cell);
+            FullMatrix<double> &matrix = element[0];
+            matrix                     = 0.;
+            for (unsigned int q = 0; q < ghost.eta.size(); ++q)
+              {
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  strain[i] =
+                    (*ghost_values)[velocity].symmetric_gradient(i, q);
+                const double factor = 2. * ghost.eta[q] * ghost_values->JxW(q);
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    matrix(i, j) += factor * (strain[i] * strain[j]);
+              }
+            scatter(matrix);
           }
       });
 
