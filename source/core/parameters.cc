@@ -225,10 +225,15 @@ namespace Fidus
       geometric_multigrid =
         preconditioner == "GMG" ||
         (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);
-      mg_smoother_degree         = prm.get_integer("Multigrid smoother degree");
-      mg_viscosity_averaging     = prm.get("Multigrid viscosity averaging");
-      mg_smoother_blocks         = prm.get("Multigrid smoother blocks");
-      rigid_body_correction      = prm.get_bool("Rigid-body correction");
+      mg_smoother_degree     = prm.get_integer("Multigrid smoother degree");
+      mg_viscosity_averaging = prm.get("Multigrid viscosity averaging");
+      mg_smoother_blocks     = prm.get("Multigrid smoother blocks");
+      // auto: off where measured not to pay (GMG in 3D with its Galerkin
+      // levels and cut-cell blocks; doc/preconditioners.md).
+      const std::string correction = prm.get("Rigid-body correction");
+      rigid_body_correction =
+        correction == "true" ||
+        (correction == "auto" && !(geometric_multigrid && dim == 3));
       matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
       if (geometric_multigrid && velocity_degree > 3)
         throw InputError(
