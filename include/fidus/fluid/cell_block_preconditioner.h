@@ -246,7 +246,11 @@ namespace Fidus
       op.with_points([&](auto n, const unsigned int quadrature) {
         constexpr int n_1d = decltype(n)::value;
         typename Operator::template EvaluatorWith<n_1d> phi(mf, 0, quadrature);
-        const auto                                     &lexicographic =
+        // On a Galerkin level a cell of uniform viscosity is exact with the
+        // Gauss points too, at a fifth of the cost in 3D Q2 (most cells
+        // next to a cut cell are such cells).
+        typename Operator::Evaluator gauss(mf, 0, 0);
+        const auto                  &lexicographic =
           mf.get_shape_info(0, quadrature, 0, 0, 0).lexicographic_numbering;
         std::vector<types::global_dof_index> cell_dofs(dofs_per_cell);
         // Per cell DoF: its (owned local index, weight) after resolution.
@@ -333,16 +337,24 @@ namespace Fidus
               }
             if (!any)
               continue;
-            phi.reinit(batch);
-            for (unsigned int j = 0; j < dofs_per_cell; ++j)
-              {
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  phi.begin_dof_values()[i] = static_cast<double>(i == j);
-                op.cell_term(phi);
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  for (unsigned int lane = 0; lane < n_lanes; ++lane)
-                    element[lane](i, j) = phi.begin_dof_values()[i][lane];
-              }
+            auto compute = [&](auto &evaluator) {
+              evaluator.reinit(batch);
+              for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                {
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    evaluator.begin_dof_values()[i] =
+                      static_cast<double>(i == j);
+                  op.cell_term(evaluator);
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    for (unsigned int lane = 0; lane < n_lanes; ++lane)
+                      element[lane](i, j) =
+                        evaluator.begin_dof_values()[i][lane];
+                }
+            };
+            if (op.galerkin_level && op.uniform_viscosity[batch])
+              compute(gauss);
+            else
+              compute(phi);
             for (unsigned int lane = 0; lane < n_lanes; ++lane)
               {
                 if (!touches[lane])
