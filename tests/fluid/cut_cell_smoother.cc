@@ -13,7 +13,9 @@
 //   times the FGMRES iterations per Uzawa solve of point Jacobi (measured
 //   0.47 at level 3 on 1 and 2 ranks; on 2 ranks 0.67 before the ghost
 //   cells completed the rows), and the particle velocity changes by at most
-//   1e-7.
+//   1e-7;
+// - Rigid-body correction = auto is off with GMG in 3D and on elsewhere
+//   (doc/preconditioners.md), and true/false override it.
 
 #include "../fidus_test.h"
 #include "summary_tools.h"
@@ -226,6 +228,20 @@ run_inclusion(const std::string &blocks)
   return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 
+/// Whether the rigid-body correction is on in @p dim dimensions, with the
+/// Linear solver entries @p solver.
+bool
+correction_on(const unsigned int dim, const std::string &solver = "")
+{
+  std::ostringstream prm;
+  prm << "set Dimension = " << dim << "\nsubsection Domain\n"
+      << "  set Lower left = " << (dim == 2 ? "0, 0" : "0, 0, 0") << "\n"
+      << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"
+      << "end\nsubsection Fluid\n  subsection Linear solver\n"
+      << solver << "  end\nend\n";
+  return Fidus::read_parameters_from_string(prm.str()).rigid_body_correction;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -233,6 +249,14 @@ main(int argc, char **argv)
   redirect_warnings();
   check_blocks<2>();
   check_blocks<3>();
+
+  check_range("Rigid-body correction = auto: 3D (GMG) off, 2D (AMG) on, 3D "
+              "AMG on, 3D GMG with true on (1 each)",
+              !correction_on(3) + correction_on(2) +
+                correction_on(3, "    set Preconditioner = AMG\n") +
+                correction_on(3, "    set Rigid-body correction = true\n"),
+              4,
+              4);
 
   const auto blocks = run_inclusion("cut cells");
   const auto points = run_inclusion("none");
