@@ -475,7 +475,7 @@ namespace Fidus
                 eta[q] = (*ghosted)[dofs[q]] / fe_values.JxW(q);
               const auto [low, high] =
                 std::minmax_element(eta.begin(), eta.end());
-              if (*high - *low <= 1e-12 * *high)
+              if (Operator::same_viscosity(*low, *high))
                 std::fill(eta.begin(), eta.end(), eta[0]);
             };
           }
@@ -532,7 +532,7 @@ namespace Fidus
                 // A cell wholly in the fluid or wholly in the solid: its
                 // values agree to round-off. Make them equal, so that the
                 // Gauss and the Gauss-Lobatto paths give the same operator.
-                if (high - low <= 1e-12 * high)
+                if (Operator::same_viscosity(low, high))
                   for (unsigned int q = 0; q < phi.n_q_points; ++q)
                     table(batch, q)[lane] = table(batch, 0)[lane];
                 else

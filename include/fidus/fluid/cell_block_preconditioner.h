@@ -159,7 +159,7 @@ namespace Fidus
                 ghost_viscosity(cell, *ghost_values, ghost.eta);
                 const auto [low, high] =
                   std::minmax_element(ghost.eta.begin(), ghost.eta.end());
-                ghost.cut = *high - *low > 1e-12 * std::abs(*high);
+                ghost.cut = !Operator::same_viscosity(*low, *high);
                 ghosts.push_back(std::move(ghost));
                 continue;
               }
@@ -209,7 +209,7 @@ namespace Fidus
                 low  = std::min(low, op.viscosity(batch, q)[lane]);
                 high = std::max(high, op.viscosity(batch, q)[lane]);
               }
-            if (high - low <= 1e-12 * std::abs(high))
+            if (Operator::same_viscosity(low, high))
               continue;
             mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
             add_block(indices);
@@ -260,7 +260,11 @@ namespace Fidus
           VectorizedArray<double>::size(),
           FullMatrix<double>(dofs_per_cell, dofs_per_cell));
         std::vector<unsigned char> touches(VectorizedArray<double>::size());
-        std::vector<unsigned int>  cell_blocks;
+        // Each lane's resolved DoFs, kept from the test for touching blocks
+        // to the scatter.
+        std::vector<decltype(free)> lane_free(VectorizedArray<double>::size(),
+                                              decltype(free)(dofs_per_cell));
+        std::vector<unsigned int>   cell_blocks;
         // Per cell DoF, its (position in the block, weight).
         std::vector<std::vector<std::pair<unsigned int, double>>> in_block(
           dofs_per_cell);
@@ -333,7 +337,8 @@ namespace Fidus
             for (unsigned int lane = 0; lane < n_lanes; ++lane)
               {
                 touches[lane] = free_dofs_of(batch, lane);
-                any           = any || touches[lane];
+                lane_free[lane].swap(free);
+                any = any || touches[lane];
               }
             if (!any)
               continue;
@@ -359,7 +364,7 @@ namespace Fidus
               {
                 if (!touches[lane])
                   continue;
-                free_dofs_of(batch, lane);
+                free.swap(lane_free[lane]);
                 scatter(element[lane]);
               }
           }

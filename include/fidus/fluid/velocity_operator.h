@@ -1,6 +1,7 @@
 #ifndef fidus_fluid_velocity_operator_h
 #define fidus_fluid_velocity_operator_h
 
+#include <cmath>
 #include <deal.II/base/table.h>
 #include <deal.II/base/vectorization.h>
 #include <deal.II/lac/la_parallel_vector.h>
@@ -67,6 +68,16 @@ namespace Fidus
     /// at every point of each of its cells (all entries of its row of
     /// viscosity are then equal per lane), else 0.
     std::vector<unsigned char> uniform_viscosity;
+
+    /// Whether a cell whose viscosity ranges from @p low to @p high has one
+    /// viscosity: its values agree to round-off (the Galerkin moments of a
+    /// wholly fluid or wholly solid cell), else the particle surface cuts
+    /// it.
+    static bool
+    same_viscosity(const double low, const double high)
+    {
+      return high - low <= 1e-12 * std::abs(high);
+    }
 
     /**
      * Call @p f with std::integral_constant<int, n> for the number n of
