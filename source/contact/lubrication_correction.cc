@@ -10,23 +10,148 @@ namespace Fidus::Contact
   {
     constexpr double pi = 3.14159265358979323846;
 
+    /// Per bond, the generalised velocities or loads of its two particles:
+    /// U_i, w_i, U_j, w_j (the last six unused for a wall).
+    using Local = std::array<double, 12>;
+
     double
     dot(const Vec3 &a, const Vec3 &b)
     {
       return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     }
 
-    /// n.(v_i - v_j) of a bond for velocities stored 3 per particle; a wall
-    /// does not move normally, so only v_i counts for it.
-    double
-    closing_speed(const LubricationBond &b, const std::vector<double> &v)
+    Vec3
+    cross(const Vec3 &a, const Vec3 &b)
     {
-      double w = 0.;
+      return {{a[1] * b[2] - a[2] * b[1],
+               a[2] * b[0] - a[0] * b[2],
+               a[0] * b[1] - a[1] * b[0]}};
+    }
+
+    Vec3
+    part(const Local &l, const unsigned int k)
+    {
+      return {{l[3 * k], l[3 * k + 1], l[3 * k + 2]}};
+    }
+
+    void
+    add_part(Local &l, const unsigned int k, const Vec3 &v, const double s)
+    {
       for (unsigned int d = 0; d < 3; ++d)
-        w += b.n[d] *
-             (v[3 * b.i + d] -
-              (b.j == LubricationBond::no_particle ? 0. : v[3 * b.j + d]));
-      return w;
+        l[3 * k + d] += s * v[d];
+    }
+
+    bool
+    is_wall(const LubricationBond &b)
+    {
+      return b.j == LubricationBond::no_particle;
+    }
+
+    /// The bond's generalised velocities from the global vector x (six
+    /// values per particle).
+    Local
+    gather(const LubricationBond &b, const std::vector<double> &x)
+    {
+      Local l{};
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          l[k] = x[6 * b.i + k];
+          if (!is_wall(b))
+            l[6 + k] = x[6 * b.j + k];
+        }
+      return l;
+    }
+
+    void
+    scatter_add(const LubricationBond &b,
+                const Local           &l,
+                const double           s,
+                std::vector<double>   &y)
+    {
+      for (unsigned int k = 0; k < 6; ++k)
+        {
+          y[6 * b.i + k] += s * l[k];
+          if (!is_wall(b))
+            y[6 * b.j + k] += s * l[6 + k];
+        }
+    }
+
+    /// n.(U_i - U_j) of a bond; a wall does not move normally.
+    double
+    closing_speed(const LubricationBond &b, const Local &v)
+    {
+      return dot(b.n, part(v, 0)) - dot(b.n, part(v, 2));
+    }
+
+    /// Loads (forces and torques on i and j) of the normal squeeze of
+    /// resistance R.
+    Local
+    normal_loads(const LubricationBond &b, const double R, const Local &v)
+    {
+      Local        f{};
+      const double w = closing_speed(b, v);
+      add_part(f, 0, b.n, -R * w);
+      add_part(f, 2, b.n, R * w);
+      return f;
+    }
+
+    /**
+     * Loads of the tangential lubrication of coefficient c (class
+     * documentation of LubricationCorrection), for the generalised
+     * velocities v; a wall moves with b.wall_velocity when @p wall_motion,
+     * else it is at rest (the loads are then linear in v).
+     */
+    Local
+    loads_of_sliding(const LubricationBond &b,
+                     const double           c,
+                     const unsigned int     dimension,
+                     const Local           &v,
+                     const bool             wall_motion)
+    {
+      const bool   wall  = is_wall(b);
+      const double kappa = dimension == 3 ? 0.6 : 1.;
+      const Vec3   Ui = part(v, 0), wi = part(v, 1);
+      const Vec3   Uj =
+        wall ? (wall_motion ? b.wall_velocity : Vec3{}) : part(v, 2);
+      const Vec3   wj    = wall ? Vec3{} : part(v, 3);
+      const double R     = wall ? b.a_i : b.a_i * b.a_j / (b.a_i + b.a_j);
+      const double delta = wall ? -1. : (b.a_i - b.a_j) / (b.a_i + b.a_j);
+      Vec3         ai_n, aj_n;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          ai_n[d] = b.a_i * b.n[d];
+          aj_n[d] = b.a_j * b.n[d];
+        }
+      const Vec3 si = cross(wi, ai_n), sj = cross(wj, aj_n);
+      Vec3       dU, S;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          const double s_i = Ui[d] + si[d], s_j = Uj[d] - sj[d];
+          // The gap's profile moves with the particles: a plane sliding
+          // along itself does not change it.
+          const double profile = Ui[d] / b.a_i + (wall ? 0. : Uj[d] / b.a_j);
+          dU[d]                = s_j - s_i;
+          S[d]                 = s_i + s_j - 2. * R * profile;
+        }
+      const double dUn = dot(dU, b.n), Sn = dot(S, b.n);
+      Vec3         f_j, shear_i, shear_j;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          dU[d] -= dUn * b.n[d];
+          S[d] -= Sn * b.n[d];
+          f_j[d]     = -c * (dU[d] - kappa * delta * S[d]);
+          shear_i[d] = c * (dU[d] - kappa * S[d]);
+          shear_j[d] = -c * (dU[d] + kappa * S[d]);
+        }
+      Local f{};
+      add_part(f, 0, f_j, -1.);
+      add_part(f, 1, cross(ai_n, shear_i), 1.);
+      if (!wall)
+        {
+          add_part(f, 2, f_j, 1.);
+          add_part(f, 3, cross(aj_n, shear_j), -1.);
+        }
+      return f;
     }
   } // namespace
 
@@ -81,6 +206,34 @@ namespace Fidus::Contact
 
 
   double
+  LubricationCorrection::tangential_resistance(const unsigned int dimension,
+                                               const double       viscosity,
+                                               const double       a1,
+                                               const double       a2,
+                                               const double       gap,
+                                               const double       range)
+  {
+    const double R = a2 > 0. ? a1 * a2 / (a1 + a2) : a1;
+    if (dimension == 3)
+      return 2. * pi * viscosity * R *
+             std::max(0., std::log(std::max(R, range) / gap));
+    return pi * viscosity * std::sqrt(2. * R / gap);
+  }
+
+
+
+  std::array<double, 12>
+  LubricationCorrection::tangential_loads(const LubricationBond &b,
+                                          const double           c,
+                                          const unsigned int     dimension,
+                                          const std::array<double, 12> &v)
+  {
+    return loads_of_sliding(b, c, dimension, v, true);
+  }
+
+
+
+  double
   LubricationCorrection::drag(const double a) const
   {
     if (settings.drag > 0.)
@@ -91,27 +244,48 @@ namespace Fidus::Contact
 
 
 
+  double
+  LubricationCorrection::rotational_drag(const double a) const
+  {
+    if (settings.drag > 0.)
+      return settings.drag * a * a * (settings.dimension == 3 ? 4. / 3. : 1.);
+    return settings.dimension == 3 ? 8. * pi * settings.viscosity * a * a * a :
+                                     4. * pi * settings.viscosity * a * a;
+  }
+
+
+
   void
   LubricationCorrection::apply(const std::vector<double> &zeta,
+                               const std::vector<double> &zeta_rot,
                                const bool                 resolved,
                                const std::vector<double> &x,
                                std::vector<double>       &y) const
   {
     const std::size_t n = zeta.size();
-    y.assign(3 * n, 0.);
+    y.assign(6 * n, 0.);
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
-        y[3 * i + d] = zeta[i] * x[3 * i + d];
+        {
+          y[6 * i + d]     = zeta[i] * x[6 * i + d];
+          y[6 * i + 3 + d] = zeta_rot[i] * x[6 * i + 3 + d];
+        }
     for (const LubricationBond &b : bond)
       {
-        const double R = resolved ? b.r_resolved : b.r_true;
-        const double w = closing_speed(b, x);
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            y[3 * b.i + d] += R * w * b.n[d];
-            if (b.j != LubricationBond::no_particle)
-              y[3 * b.j + d] -= R * w * b.n[d];
-          }
+        const Local v = gather(b, x);
+        scatter_add(b,
+                    normal_loads(b, resolved ? b.r_resolved : b.r_true, v),
+                    -1.,
+                    y);
+        if (settings.tangential)
+          scatter_add(b,
+                      loads_of_sliding(b,
+                                       resolved ? b.t_resolved : b.t_true,
+                                       settings.dimension,
+                                       v,
+                                       false),
+                      -1.,
+                      y);
       }
   }
 
@@ -124,14 +298,31 @@ namespace Fidus::Contact
                                  std::vector<Vec3>         &u,
                                  const double               dt)
   {
+    const std::vector<Vec3> w_star(u_star.size(), Vec3{{0., 0., 0.}});
+    std::vector<Vec3>       w;
+    return correct(positions, radii, u_star, w_star, u, w, dt);
+  }
+
+
+
+  LubricationStatistics
+  LubricationCorrection::correct(const std::vector<Vec3>   &positions,
+                                 const std::vector<double> &radii,
+                                 const std::vector<Vec3>   &u_star,
+                                 const std::vector<Vec3>   &w_star,
+                                 std::vector<Vec3>         &u,
+                                 std::vector<Vec3>         &w,
+                                 const double               dt)
+  {
     const std::size_t  n   = positions.size();
     const unsigned int dim = settings.dimension;
-    if (radii.size() != n || u_star.size() != n)
+    if (radii.size() != n || u_star.size() != n || w_star.size() != n)
       throw ContactError("lubrication: positions, radii and velocities "
                          "differ in number");
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
-        if (!std::isfinite(positions[i][d]) || !std::isfinite(u_star[i][d]))
+        if (!std::isfinite(positions[i][d]) || !std::isfinite(u_star[i][d]) ||
+            !std::isfinite(w_star[i][d]))
           throw ContactError("lubrication: particle " + std::to_string(i) +
                              " has a position or velocity that is not a "
                              "finite number");
@@ -139,25 +330,38 @@ namespace Fidus::Contact
     LubricationStatistics stat;
     bond.clear();
     u                = u_star;
+    w                = w_star;
     const double h_c = settings.range;
 
     // A bond is kept only where the true resistance exceeds the resolved
     // one, i.e. where the mesh misses some of the squeeze.
-    const auto make_bond = [&](LubricationBond &b,
-                               const double     a_small,
-                               const double     a1,
-                               const double     a2) {
+    const auto make_bond = [&](LubricationBond &b, const double a_small) {
       const double floor = settings.roughness * a_small;
       if (b.gap < floor)
         ++stat.n_rough;
-      b.r_true     = squeeze_resistance(dim,
-                                    settings.viscosity,
-                                    a1,
-                                    a2,
-                                    std::max(b.gap, floor));
-      b.r_resolved = settings.nothing_resolved ?
-                       0. :
-                       squeeze_resistance(dim, settings.viscosity, a1, a2, h_c);
+      const double gap = std::max(b.gap, floor);
+      b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
+      b.r_resolved =
+        settings.nothing_resolved ?
+          0. :
+          squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, h_c);
+      if (settings.tangential)
+        {
+          b.t_true     = tangential_resistance(dim,
+                                           settings.viscosity,
+                                           b.a_i,
+                                           b.a_j,
+                                           gap,
+                                           h_c);
+          b.t_resolved = settings.nothing_resolved ?
+                           0. :
+                           tangential_resistance(dim,
+                                                 settings.viscosity,
+                                                 b.a_i,
+                                                 b.a_j,
+                                                 h_c,
+                                                 h_c);
+        }
       return b.r_true > b.r_resolved;
     };
 
@@ -168,6 +372,8 @@ namespace Fidus::Contact
         LubricationBond b;
         b.i          = i;
         b.j          = j;
+        b.a_i        = radii[i];
+        b.a_j        = radii[j];
         const Vec3 r = search.separation(positions[i], positions[j]);
         b.length     = std::sqrt(dot(r, r));
         b.gap        = b.length - radii[i] - radii[j];
@@ -175,25 +381,28 @@ namespace Fidus::Contact
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j]), radii[i], radii[j]))
+        if (make_bond(b, std::min(radii[i], radii[j])))
           {
             bond.push_back(b);
             ++stat.n_pairs;
           }
       }
-    for (unsigned int w = 0; w < walls.size(); ++w)
+    for (unsigned int k = 0; k < walls.size(); ++k)
       for (std::size_t i = 0; i < n; ++i)
         {
-          const Wall     &wall = walls[w];
+          const Wall     &wall = walls[k];
           LubricationBond b;
           b.i      = static_cast<std::uint32_t>(i);
-          b.wall   = w;
+          b.wall   = k;
+          b.a_i    = radii[i];
           b.length = wall.side * (positions[i][wall.axis] - wall.position);
           b.gap    = b.length - radii[i];
           if (b.gap >= h_c)
             continue;
-          b.n[wall.axis] = -wall.side;
-          if (make_bond(b, radii[i], radii[i], 0.))
+          b.n[wall.axis]             = -wall.side;
+          b.wall_velocity            = wall.velocity;
+          b.wall_velocity[wall.axis] = 0.;
+          if (make_bond(b, radii[i]))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;
@@ -202,32 +411,55 @@ namespace Fidus::Contact
     if (bond.empty())
       return stat;
 
-    // Right-hand side b = A_resolved u*, solved for A_true u = b by
-    // Jacobi-preconditioned conjugate gradients (A_true is the drag plus a
-    // sum of rank-one positive terms: symmetric positive definite).
-    std::vector<double> zeta(n), x(3 * n), rhs, ax, r(3 * n), z(3 * n),
-      p(3 * n), diag(3 * n);
+    // Right-hand side b = A_resolved u* + (the forcing of moving walls,
+    // true minus resolved), solved for A_true u = b by Jacobi-preconditioned
+    // conjugate gradients (A_true is the drag plus a sum of positive
+    // semi-definite bond terms: symmetric positive definite).
+    std::vector<double> zeta(n), zeta_rot(n), x(6 * n), rhs, ax, r(6 * n),
+      z(6 * n), p(6 * n), diag(6 * n);
     for (std::size_t i = 0; i < n; ++i)
       {
-        zeta[i] = drag(radii[i]);
+        zeta[i]     = drag(radii[i]);
+        zeta_rot[i] = rotational_drag(radii[i]);
         for (unsigned int d = 0; d < 3; ++d)
           {
-            x[3 * i + d]    = u_star[i][d];
-            diag[3 * i + d] = zeta[i];
+            x[6 * i + d]        = u_star[i][d];
+            x[6 * i + 3 + d]    = w_star[i][d];
+            diag[6 * i + d]     = zeta[i];
+            diag[6 * i + 3 + d] = zeta_rot[i];
           }
       }
+    // The exact diagonal of the bond terms, one local unit vector at a time.
     for (const LubricationBond &b : bond)
-      for (unsigned int d = 0; d < 3; ++d)
+      for (unsigned int k = 0; k < (is_wall(b) ? 6u : 12u); ++k)
         {
-          diag[3 * b.i + d] += b.r_true * b.n[d] * b.n[d];
-          if (b.j != LubricationBond::no_particle)
-            diag[3 * b.j + d] += b.r_true * b.n[d] * b.n[d];
+          Local e{};
+          e[k]          = 1.;
+          const Local f = normal_loads(b, b.r_true, e);
+          double      t = 0.;
+          if (settings.tangential)
+            t = loads_of_sliding(b, b.t_true, dim, e, false)[k];
+          diag[6 * (k < 6 ? b.i : b.j) + k % 6] -= f[k] + t;
         }
     const std::vector<double> x_star = x;
-    apply(zeta, true, x, rhs);
-    apply(zeta, false, x, ax);
+    apply(zeta, zeta_rot, true, x, rhs);
+    apply(zeta, zeta_rot, false, x, ax);
+    const auto wall_forcing = [&](const LubricationBond &b, const bool res) {
+      return loads_of_sliding(b,
+                              res ? b.t_resolved : b.t_true,
+                              dim,
+                              Local{},
+                              true);
+    };
+    if (settings.tangential)
+      for (const LubricationBond &b : bond)
+        if (is_wall(b))
+          {
+            scatter_add(b, wall_forcing(b, false), 1., rhs);
+            scatter_add(b, wall_forcing(b, true), -1., rhs);
+          }
     double rhs_norm2 = 0., rz = 0., r_norm2 = 0.;
-    for (std::size_t k = 0; k < 3 * n; ++k)
+    for (std::size_t k = 0; k < 6 * n; ++k)
       {
         r[k] = rhs[k] - ax[k];
         z[k] = r[k] / diag[k];
@@ -240,14 +472,14 @@ namespace Fidus::Contact
     unsigned int it    = 0;
     while (r_norm2 > goal2 && it < settings.max_iterations)
       {
-        apply(zeta, false, p, ax);
+        apply(zeta, zeta_rot, false, p, ax);
         double pap = 0.;
-        for (std::size_t k = 0; k < 3 * n; ++k)
+        for (std::size_t k = 0; k < 6 * n; ++k)
           pap += p[k] * ax[k];
         const double alpha  = rz / pap;
         double       rz_new = 0.;
         r_norm2             = 0.;
-        for (std::size_t k = 0; k < 3 * n; ++k)
+        for (std::size_t k = 0; k < 6 * n; ++k)
           {
             x[k] += alpha * p[k];
             r[k] -= alpha * ax[k];
@@ -257,7 +489,7 @@ namespace Fidus::Contact
           }
         const double beta = rz_new / rz;
         rz                = rz_new;
-        for (std::size_t k = 0; k < 3 * n; ++k)
+        for (std::size_t k = 0; k < 6 * n; ++k)
           p[k] = z[k] + beta * p[k];
         ++it;
       }
@@ -268,14 +500,36 @@ namespace Fidus::Contact
 
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < dim; ++d)
-        u[i][d] = x[3 * i + d];
+        u[i][d] = x[6 * i + d];
+    if (settings.tangential)
+      for (std::size_t i = 0; i < n; ++i)
+        for (unsigned int d = (dim == 3 ? 0 : 2); d < 3; ++d)
+          w[i][d] = x[6 * i + 3 + d];
 
-    // The normal force each bond adds, positive apart: R w - Rres w*, with
-    // w = n.(u_i - u_j) the closing speed (before the step correction
-    // below, which is a matter of time integration, not a force).
+    // The loads each bond adds: the true resistance on the corrected
+    // velocities minus the resolved one on the predicted velocities. The
+    // normal force is positive apart, R w - Rres w*, with w = n.(u_i - u_j)
+    // the closing speed (before the step correction below, which is a
+    // matter of time integration, not a force).
     for (LubricationBond &b : bond)
-      b.force = b.r_true * closing_speed(b, x) -
-                b.r_resolved * closing_speed(b, x_star);
+      {
+        const Local v = gather(b, x), v_star = gather(b, x_star);
+        b.force = b.r_true * closing_speed(b, v) -
+                  b.r_resolved * closing_speed(b, v_star);
+        if (!settings.tangential)
+          continue;
+        Local       f = loads_of_sliding(b, b.t_true, dim, v, true);
+        const Local f_res =
+          loads_of_sliding(b, b.t_resolved, dim, v_star, true);
+        for (unsigned int k = 0; k < 12; ++k)
+          f[k] -= f_res[k];
+        // The force on j, or on the wall: the opposite of the one on i.
+        b.tangential_force = part(f, 0);
+        for (double &c : b.tangential_force)
+          c = -c;
+        b.torque_i = part(f, 1);
+        b.torque_j = part(f, 3);
+      }
 
     // The Euler step's tangential opening of each pair, taken off its
     // normal velocity and shared in proportion to the mobilities 1/zeta
@@ -287,13 +541,13 @@ namespace Fidus::Contact
           {
             if (b.j == LubricationBond::no_particle)
               continue; // a particle sliding along a plane keeps its gap
-            Vec3   w{{0., 0., 0.}}, r_new{{0., 0., 0.}};
+            Vec3   rel{{0., 0., 0.}}, r_new{{0., 0., 0.}};
             double wn = 0.;
             for (unsigned int d = 0; d < 3; ++d)
               {
-                w[d] = u[b.j][d] - u[b.i][d];
-                wn += b.n[d] * w[d];
-                r_new[d] = b.length * b.n[d] + dt * w[d];
+                rel[d] = u[b.j][d] - u[b.i][d];
+                wn += b.n[d] * rel[d];
+                r_new[d] = b.length * b.n[d] + dt * rel[d];
               }
             const double opening =
               std::sqrt(dot(r_new, r_new)) - b.length - dt * wn;

@@ -28,6 +28,11 @@ namespace Fidus::Contact
     /// (undisturbed shear): the resolved resistance is then zero instead of
     /// that of the gap h_c.
     bool nothing_resolved = false;
+    /// Also correct the tangential terms: the resistance to the sliding of
+    /// the two surfaces past each other and to their relative rotation,
+    /// which couples translations and rotations (h^-1/2 for discs, log(1/h)
+    /// for spheres). false: the normal squeeze only.
+    bool tangential = false;
     /// Resistance of one particle to translation, force per velocity; 0:
     /// the isolated Stokes drag, 6 pi eta a in 3D and 4 pi eta per unit
     /// length in 2D.
@@ -75,6 +80,21 @@ namespace Fidus::Contact
     double r_true     = 0.;
     double r_resolved = 0.;
     double force      = 0.;
+    /// Radii of the two surfaces; a_j = 0 for a wall.
+    double a_i = 0.;
+    double a_j = 0.;
+    /// Tangential resistance coefficient c of the true gap and of the range
+    /// (see tangential_resistance()); zero without tangential terms.
+    double t_true     = 0.;
+    double t_resolved = 0.;
+    /// Tangential velocity of the wall (sliding walls); zero for a pair.
+    Vec3 wall_velocity = {{0., 0., 0.}};
+    /// The tangential force the correction adds on j (on i it is the
+    /// opposite; for a wall, on the wall), and the torques it adds on i and
+    /// j about their centres.
+    Vec3 tangential_force = {{0., 0., 0.}};
+    Vec3 torque_i         = {{0., 0., 0.}};
+    Vec3 torque_j         = {{0., 0., 0.}};
   };
 
   /**
@@ -94,10 +114,29 @@ namespace Fidus::Contact
    *
    * a symmetric positive definite system in the velocities (implicit: the
    * resistance of a closing gap acts on the velocity that closes it). Pairs
-   * farther than h_c keep u = u*; so does an isolated particle. Only the
-   * normal (squeeze) term is corrected: it is the one singular as h^-1
-   * (spheres) or h^-3/2 (discs); the tangential terms grow like log(1/h)
-   * (spheres) and are left to the mesh.
+   * farther than h_c keep u = u*; so does an isolated particle.
+   *
+   * With LubricationSettings::tangential the same is done for the
+   * tangential terms, with the angular velocities w among the unknowns
+   * (rotational drag 8 pi eta a^3 in 3D, 4 pi eta a^2 per unit length in
+   * 2D). From the Reynolds equation of the gap between two surfaces of
+   * radii a_i, a_j (n from i to j, surface velocities at the gap
+   * s_i = U_i + w_i x a_i n and s_j = U_j - w_j x a_j n), the tangential
+   * force on j and the shear forces on the two surfaces are
+   *
+   *   F_j = -c (dU - k d S),  shear on j: -c (dU + k S), on i: c (dU - k S),
+   *
+   * with dU = P (s_j - s_i), S = P (s_i + s_j - 2 R (U_i / a_i + U_j / a_j))
+   * (P the projection on the tangent plane; the last term is the motion of
+   * the gap's profile), d = (a_i - a_j) / (a_i + a_j), k = 1 in 2D and
+   * 3/5 in 3D, and the torques those shear forces exert at the gap points.
+   * c = pi eta sqrt(2 R / h) per unit length for discs, 2 pi eta R
+   * log(L / h) for spheres (L = max(R, h_c): only the difference between
+   * two gaps is fixed by lubrication theory). This resistance is symmetric,
+   * positive semi-definite and zero for a rigid motion of the pair; it
+   * reproduces the known sphere-wall log coefficients 8/15, 2/15 and 2/5
+   * and the cylinder-wall 2 sqrt(2) pi eta (a/h)^1/2 (doc/fluid.md,
+   * "Lubrication").
    *
    * The squeeze resistance of two spheres (or a sphere and a plane, radius
    * infinite) with reduced radius R = a_1 a_2 / (a_1 + a_2) is 6 pi eta R^2
@@ -137,6 +176,47 @@ namespace Fidus::Contact
                        double       gap);
 
     /**
+     * Tangential resistance coefficient c (see the class documentation) of
+     * a gap @p gap between radii @p a1 and @p a2 (0: a wall), for a
+     * correction of range @p range.
+     */
+    static double
+    tangential_resistance(unsigned int dimension,
+                          double       viscosity,
+                          double       a1,
+                          double       a2,
+                          double       gap,
+                          double       range);
+
+    /**
+     * Loads of the tangential terms of bond @p b with coefficient @p c for
+     * the velocities @p v = (U_i, w_i, U_j, w_j): the forces and torques the
+     * gap exerts, (F_i, T_i, F_j, T_j); a wall bond uses the first six
+     * entries and its wall moves with b.wall_velocity. b.n, b.a_i and b.a_j
+     * must be set.
+     */
+    static std::array<double, 12>
+    tangential_loads(const LubricationBond        &b,
+                     double                        c,
+                     unsigned int                  dimension,
+                     const std::array<double, 12> &v);
+
+    /**
+     * Correct the predicted translational and angular velocities @p u_star
+     * and @p w_star (angular velocity about z in 2D, in component 2): @p u
+     * and @p w receive the corrected ones. Without tangential terms w =
+     * w_star and u is what the other overload gives.
+     */
+    LubricationStatistics
+    correct(const std::vector<Vec3>   &positions,
+            const std::vector<double> &radii,
+            const std::vector<Vec3>   &u_star,
+            const std::vector<Vec3>   &w_star,
+            std::vector<Vec3>         &u,
+            std::vector<Vec3>         &w,
+            double                     dt = 0.);
+
+    /**
      * Correct the predicted velocities @p u_star of particles at @p positions
      * with @p radii: @p u receives the velocities of the system with the
      * sub-grid squeeze resistance (u = u* where no pair is closer than the
@@ -169,10 +249,18 @@ namespace Fidus::Contact
     double
     drag(double a) const;
 
+    /// The rotational drag used for a particle of radius @p a: 8 pi eta a^3
+    /// (3D), 4 pi eta a^2 (2D), or drag(a) times 4 a^2 / 3 (3D) and a^2
+    /// (2D) when LubricationSettings::drag is set.
+    double
+    rotational_drag(double a) const;
+
   private:
-    /// y = A x for the corrected system (or its resolved part).
+    /// y = A x for the corrected system (or its resolved part); x and y
+    /// hold 6 values per particle, the velocity and the angular velocity.
     void
     apply(const std::vector<double> &zeta,
+          const std::vector<double> &zeta_rot,
           bool                       resolved,
           const std::vector<double> &x,
           std::vector<double>       &y) const;
