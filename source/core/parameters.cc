@@ -210,6 +210,7 @@ namespace Fidus
       solid_retraction         = prm.get_double("Solid retraction");
       lubrication              = prm.get_bool("Lubrication correction");
       lubrication_range        = prm.get_double("Lubrication range");
+      lubrication_tangential   = prm.get_bool("Lubrication tangential terms");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");

@@ -142,6 +142,16 @@ namespace Fidus
         "close pairs are no longer held as one rigid doublet. false keeps "
         "the seed's model.");
       prm.declare_entry(
+        "Lubrication tangential terms",
+        "true",
+        Patterns::Bool(),
+        "With 'Lubrication correction': also correct the tangential terms "
+        "of each close gap, the resistance to the two surfaces sliding past "
+        "each other and to their relative rotation (singular like h^-1/2 "
+        "for discs, log(1/h) for spheres), with the angular velocities "
+        "among the unknowns (doc/fluid.md). false: the normal squeeze "
+        "only.");
+      prm.declare_entry(
         "Lubrication range",
         "2",
         Patterns::Double(0.),

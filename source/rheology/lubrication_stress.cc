@@ -33,7 +33,12 @@ namespace Fidus
         for (unsigned int i = 0; i < 3; ++i)
           for (unsigned int j = i; j < 3; ++j)
             {
-              const double t = -share * b.force * b.length * b.n[i] * b.n[j];
+              // The bond's force on j, normal and tangential, acting across
+              // the length of the bond.
+              const double t = -share * b.length *
+                               (b.force * b.n[i] * b.n[j] +
+                                0.5 * (b.n[i] * b.tangential_force[j] +
+                                       b.n[j] * b.tangential_force[i]));
               s[b.i][i][j] += t;
               if (pair)
                 s[b.j][i][j] += t;

@@ -118,6 +118,7 @@ namespace Fidus
         ls.roughness        = parameters.roughness;
         ls.nothing_resolved = !fictitious;
         ls.drag             = parameters.drag_coefficient;
+        ls.tangential       = parameters.lubrication_tangential;
         lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
         lubrication->set_walls(box.walls);
         lubrication->set_periodicity(box.periods);
@@ -448,8 +449,13 @@ namespace Fidus
     const unsigned int next = state.step + 1;
     try
       {
-        lubrication_stats =
-          lubrication->correct(state.X, prm.radii, u_star, u_lubricated, dt);
+        lubrication_stats = lubrication->correct(state.X,
+                                                 prm.radii,
+                                                 u_star,
+                                                 w_star,
+                                                 u_lubricated,
+                                                 w_lubricated,
+                                                 dt);
       }
     catch (const Contact::ContactError &e)
       {
@@ -521,18 +527,21 @@ namespace Fidus
   Simulation<dim>::advance_particles(const double dt)
   {
     RunState &s = state;
+    // The tangential lubrication also changes how the particles turn.
+    const std::vector<RunState::Vec3> &w_turn =
+      lubrication ? w_lubricated : w_star;
     for (unsigned int i = 0; i < n; ++i)
       {
         for (unsigned int d = 0; d < dim; ++d)
           s.X[i][d] += dt * u_corrected[i][d];
         if (dim == 2)
-          s.angle[i] += dt * w_star[i][2];
+          s.angle[i] += dt * w_turn[i][2];
         else
           {
             // q <- q + dt/2 (0, w) q, renormalised.
             auto        &q  = s.quaternion[i];
-            const double wx = w_star[i][0], wy = w_star[i][1],
-                         wz                = w_star[i][2];
+            const double wx = w_turn[i][0], wy = w_turn[i][1],
+                         wz                = w_turn[i][2];
             const std::array<double, 4> dq = {
               {-wx * q[1] - wy * q[2] - wz * q[3],
                wx * q[0] + wy * q[3] - wz * q[2],

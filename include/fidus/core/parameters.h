@@ -112,8 +112,10 @@ namespace Fidus
     double solid_retraction = 0.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
-    bool         lubrication                = false;
-    double       lubrication_range          = 2.;
+    bool   lubrication       = false;
+    double lubrication_range = 2.;
+    /// Also the tangential terms (Fluid/Lubrication tangential terms).
+    bool         lubrication_tangential     = true;
     double       linear_tolerance           = 1e-6;
     double       inexact_uzawa_factor       = 0.;
     unsigned int max_cheap_iterations       = 1000;

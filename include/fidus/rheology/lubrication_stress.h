@@ -11,13 +11,14 @@ namespace Fidus
    * The stress of the sub-grid lubrication forces of the last correction
    * (doc/rheology.md):
    *
-   *   Sigma_l = -(1/V) sum_b l_b f_b n_b (x) n_b,
+   *   Sigma_l = -(1/V) sum_b l_b sym(n_b (x) F_b),  F_b = f_b n_b + t_b,
    *
    * over the bonds of @p bonds, with f_b the normal force that pushes the
-   * pair apart (LubricationBond::force) and l_b the branch length (centre to
-   * centre, or centre to wall). Like the contact stress: a squeeze that
-   * resists approach (f > 0) is compressive. A 3 x 3 tensor; in 2D its z row
-   * is zero.
+   * pair apart (LubricationBond::force), t_b the tangential force on j
+   * (LubricationBond::tangential_force, zero without tangential terms) and
+   * l_b the branch length (centre to centre, or centre to wall). Like the
+   * contact stress: a squeeze that resists approach (f > 0) is compressive.
+   * A 3 x 3 tensor; in 2D its z row is zero.
    */
   dealii::SymmetricTensor<2, 3>
   lubrication_stress(const std::vector<Contact::LubricationBond> &bonds,
@@ -25,7 +26,7 @@ namespace Fidus
 
   /**
    * Each particle's share of V Sigma_l (of @p n_particles): a pair bond's
-   * term -l f n (x) n is split equally between its two particles, a wall
+   * term -l sym(n (x) F) is split equally between its two particles, a wall
    * bond's goes to its particle, so that the shares add up to
    * V lubrication_stress() (as contact_stresslets() for the contact part).
    */

@@ -221,8 +221,9 @@ namespace Fidus
     bool                                   remeshed = false;
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
     /// Extrapolated, lubricated and contact-corrected velocities.
-    std::vector<RunState::Vec3>    u_star, w_star, u_lubricated, u_corrected;
-    Contact::LubricationStatistics lubrication_stats;
+    std::vector<RunState::Vec3> u_star, w_star, u_lubricated, w_lubricated,
+      u_corrected;
+    Contact::LubricationStatistics           lubrication_stats;
     typename HydrodynamicStress<dim>::Result hydrodynamic;
     SuspensionStress                         stress;
     /// Force per unit velocity of a contact correction (Contact/Drag
