@@ -7,7 +7,8 @@
 # The sphere sits off the mesh's symmetry at (0.513, 0.493, 0.507).
 # Usage: contrib/benchmarks/einstein_3d.sh ["a:L1,L2,..." ...]
 #        (default: "0.2:4,5,6" "0.1:5,6,7")
-# RETRACTIONS="0.3" (default "0 0.3") chooses the Solid retraction values.
+# RETRACTIONS="0.3" (default "0 0.3") chooses the Solid retraction values;
+# NP=2 runs each case on that many MPI ranks (default 1).
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
@@ -62,7 +63,9 @@ subsection Output
 end
 PRM
       start=$(date +%s.%N)
-      if ! "$fidus" "$work/run.prm" > "$work/log" 2>&1; then
+      launch=()
+      [ "${NP:-1}" -gt 1 ] && launch=(mpirun -np "$NP" --oversubscribe)
+      if ! "${launch[@]}" "$fidus" "$work/run.prm" > "$work/log" 2>&1; then
         echo "| a = $a, level $level: run failed |"; tail -3 "$work/log"; continue
       fi
       wall=$(echo "$(date +%s.%N) - $start" | bc)
