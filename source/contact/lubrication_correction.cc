@@ -199,7 +199,18 @@ namespace Fidus::Contact
     // Reduced radius of the two surfaces; a plane (a2 = 0) has 1/a2 = 0.
     const double R = a2 > 0. ? a1 * a2 / (a1 + a2) : a1;
     if (dimension == 3)
-      return 6. * pi * viscosity * R * R / gap;
+      {
+        // The logarithmic term, next to the leading one, matters at the
+        // gaps the mesh hands over (a few tenths of a cell): without it a
+        // pair of equal spheres is 20 % too mobile at h = 0.1a.
+        const double b = a2 > 0. ? a2 / a1 : 0.;
+        const double g =
+          a2 > 0. ? b * (1. + 7. * b + b * b) / (5. * std::pow(1. + b, 3)) :
+                    0.2;
+        const double xi = a2 > 0. ? 2. * gap / (a1 + a2) : gap / a1;
+        return 6. * pi * viscosity *
+               (R * R / gap + a1 * g * std::max(0., std::log(1. / xi)));
+      }
     return 3. * std::sqrt(2.) * pi * viscosity * std::pow(R / gap, 1.5);
   }
 
@@ -332,10 +343,14 @@ namespace Fidus::Contact
     u                = u_star;
     w                = w_star;
     const double h_c = settings.range;
+    const double h_w =
+      settings.wall_range >= 0. ? settings.wall_range : settings.range;
 
     // A bond is kept only where the true resistance exceeds the resolved
     // one, i.e. where the mesh misses some of the squeeze.
-    const auto make_bond = [&](LubricationBond &b, const double a_small) {
+    const auto make_bond = [&](LubricationBond &b,
+                               const double     a_small,
+                               const double     range) {
       const double floor = settings.roughness * a_small;
       if (b.gap < floor)
         ++stat.n_rough;
@@ -344,7 +359,7 @@ namespace Fidus::Contact
       b.r_resolved =
         settings.nothing_resolved ?
           0. :
-          squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, h_c);
+          squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, range);
       if (settings.tangential)
         {
           b.t_true     = tangential_resistance(dim,
@@ -352,15 +367,15 @@ namespace Fidus::Contact
                                            b.a_i,
                                            b.a_j,
                                            gap,
-                                           h_c);
+                                           range);
           b.t_resolved = settings.nothing_resolved ?
                            0. :
                            tangential_resistance(dim,
                                                  settings.viscosity,
                                                  b.a_i,
                                                  b.a_j,
-                                                 h_c,
-                                                 h_c);
+                                                 range,
+                                                 range);
         }
       return b.r_true > b.r_resolved;
     };
@@ -381,7 +396,7 @@ namespace Fidus::Contact
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j])))
+        if (make_bond(b, std::min(radii[i], radii[j]), h_c))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -397,12 +412,12 @@ namespace Fidus::Contact
           b.a_i    = radii[i];
           b.length = wall.side * (positions[i][wall.axis] - wall.position);
           b.gap    = b.length - radii[i];
-          if (b.gap >= h_c)
+          if (b.gap >= h_w)
             continue;
           b.n[wall.axis]             = -wall.side;
           b.wall_velocity            = wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
-          if (make_bond(b, radii[i]))
+          if (make_bond(b, radii[i], h_w))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;

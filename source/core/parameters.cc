@@ -209,8 +209,25 @@ namespace Fidus
       release_shared_cells     = prm.get("Shared cells") == "fluid";
       solid_retraction         = prm.get_double("Solid retraction");
       lubrication              = prm.get_bool("Lubrication correction");
-      lubrication_range        = prm.get_double("Lubrication range");
-      lubrication_tangential   = prm.get_bool("Lubrication tangential terms");
+      const std::string range  = Utilities::trim(prm.get("Lubrication range"));
+      if (range == "auto")
+        {
+          lubrication_range      = dim == 3 ? 0.3 : 2.;
+          lubrication_wall_range = dim == 3 ? 0.2 : 2.;
+        }
+      else
+        {
+          const std::vector<double> v =
+            parse_numbers(range, "Fluid/Lubrication range");
+          if (v.size() != 1)
+            throw InputError("entry 'Fluid/Lubrication range' has the value '" +
+                             range +
+                             "'; allowed: auto or one gap in finest cell "
+                             "sizes > 0");
+          lubrication_range      = v[0];
+          lubrication_wall_range = v[0];
+        }
+      lubrication_tangential = prm.get_bool("Lubrication tangential terms");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
       inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
@@ -428,6 +445,30 @@ namespace Fidus
           throw InputError("entry 'Particles/Radius' has the value " +
                            std::to_string(radii[i]) + " for particle " +
                            std::to_string(i) + "; allowed: a radius > 0");
+
+      external_forces.clear();
+      const std::string forces_text = prm.get("External force");
+      std::vector<std::array<double, 3>> forces;
+      for (const std::string &item :
+           Utilities::split_string_list(forces_text, ';'))
+        if (!item.empty())
+          forces.push_back(parse_point(item, "Particles/External force", dim));
+      if (forces.size() == 1)
+        external_forces.assign(positions.size(), forces[0]);
+      else if (forces.size() == positions.size())
+        external_forces = forces;
+      else if (!forces.empty())
+        throw InputError("entry 'Particles/External force' has " +
+                         std::to_string(forces.size()) + " forces for " +
+                         std::to_string(positions.size()) +
+                         " particles; allowed: one force for all particles "
+                         "or one per particle, separated by ';'");
+      bool any_force = false;
+      for (const auto &f : external_forces)
+        for (const double c : f)
+          any_force = any_force || c != 0.;
+      if (!any_force)
+        external_forces.clear();
     }
     prm.leave_subsection();
 
@@ -525,6 +566,18 @@ namespace Fidus
     require_positive(interface_band, "Mesh refinement/Interface band");
     require_positive(rigidity_tolerance, "Fluid/Rigidity tolerance");
     require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
+
+    if (!external_forces.empty() &&
+        (fluid_model != FluidModel::fictitious_domain ||
+         boundary_condition == BoundaryCondition::exact_rigid_inclusion))
+      throw InputError(
+        "entry 'Particles/External force' is set, but the fluid is " +
+        std::string(fluid_model != FluidModel::fictitious_domain ?
+                      "'Fluid/Model = undisturbed shear'" :
+                      "the exact rigid inclusion") +
+        "; allowed: external forces with 'Fluid/Model = fictitious "
+        "domain' and a boundary condition other than 'exact rigid "
+        "inclusion'");
 
     if (!(penalty_factor > 1.))
       throw InputError("entry 'Fluid/Penalty factor' has the value " +

@@ -138,9 +138,9 @@ namespace Fidus
         "Add the squeeze resistance of the gaps the mesh cannot resolve "
         "(particle pairs and particle-wall gaps below 'Lubrication range'), "
         "implicitly in the particle velocities, minus the part the mesh "
-        "carries (doc/fluid.md). Meant with 'Shared cells = fluid', where "
-        "close pairs are no longer held as one rigid doublet. false keeps "
-        "the seed's model.");
+        "carries (doc/lubrication.md). Meant with 'Shared cells = fluid', "
+        "where close pairs are no longer held as one rigid doublet. false "
+        "keeps the seed's model.");
       prm.declare_entry(
         "Lubrication tangential terms",
         "true",
@@ -149,15 +149,19 @@ namespace Fidus
         "of each close gap, the resistance to the two surfaces sliding past "
         "each other and to their relative rotation (singular like h^-1/2 "
         "for discs, log(1/h) for spheres), with the angular velocities "
-        "among the unknowns (doc/fluid.md). false: the normal squeeze "
+        "among the unknowns (doc/lubrication.md). false: the normal squeeze "
         "only.");
       prm.declare_entry(
         "Lubrication range",
-        "2",
-        Patterns::Double(0.),
+        "auto",
+        Patterns::Anything(),
         "Gap, in finest cell sizes, below which the lubrication correction "
         "acts and above which the mesh is taken to resolve the squeeze "
-        "flow, > 0.");
+        "flow, > 0. auto: 2 in 2D (where it keeps a lubricated pair from "
+        "overlapping at every level); in 3D 0.3 between particles and 0.2 "
+        "between a particle and a wall, where the mesh carries the squeeze "
+        "down to about that fraction of a cell (measured against exact "
+        "solutions in doc/lubrication.md). A number sets both.");
       prm.declare_entry(
         "Shared cells",
         "rigid",
@@ -303,6 +307,16 @@ namespace Fidus
                         Patterns::Anything(),
                         "Centres [length], particles separated by ';', "
                         "coordinates by ',', e.g. '0.451, 0.51; 0.549, 0.49'.");
+      prm.declare_entry(
+        "External force",
+        "",
+        Patterns::Anything(),
+        "Force [force, per unit length in 2D] on the particles, e.g. "
+        "gravity minus buoyancy: one vector 'fx, fy[, fz]' for every "
+        "particle, or one per particle separated by ';'. Empty: force-free "
+        "particles (the seed's scenes). It acts as a uniform force density "
+        "over each particle's solid, so the fluid carries it to the walls; "
+        "the stress output assumes force-free particles (doc/fluid.md).");
       prm.declare_entry("Positions file",
                         "",
                         Patterns::Anything(),

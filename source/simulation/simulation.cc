@@ -115,6 +115,8 @@ namespace Fidus
         ls.dimension = dim;
         ls.viscosity = parameters.viscosity;
         ls.range = parameters.lubrication_range * parameters.finest_cell_size();
+        ls.wall_range =
+          parameters.lubrication_wall_range * parameters.finest_cell_size();
         ls.roughness        = parameters.roughness;
         ls.nothing_resolved = !fictitious;
         ls.drag             = parameters.drag_coefficient;
@@ -417,14 +419,16 @@ namespace Fidus
     // reversal 't < T ? 1 : -1'), where plain AB2 would make one step with
     // -2U: an O(dt) error that breaks the reversibility of Stokes flow,
     // which is what the contact models are meant to keep.
-    const RunState &s      = state;
-    const double    beta   = s.have_history ? dt / (2. * s.dt_old) : 0.;
-    const double    g_now  = shear(s.time);
-    const double    g_old  = s.have_history ? shear(s.t_old) : g_now;
-    const double    g_mid  = shear(s.time + 0.5 * dt);
-    const bool      scaled = std::abs(g_now) > 0. && std::abs(g_old) > 0.;
-    const double    c_now  = scaled ? g_mid / g_now : 1.;
-    const double    c_old  = scaled ? g_mid / g_old : 1.;
+    const RunState &s     = state;
+    const double    beta  = s.have_history ? dt / (2. * s.dt_old) : 0.;
+    const double    g_now = shear(s.time);
+    const double    g_old = s.have_history ? shear(s.t_old) : g_now;
+    const double    g_mid = shear(s.time + 0.5 * dt);
+    // External forces add a part that does not scale with the shear rate.
+    const bool scaled = prm.external_forces.empty() && std::abs(g_now) > 0. &&
+                        std::abs(g_old) > 0.;
+    const double c_now = scaled ? g_mid / g_now : 1.;
+    const double c_old = scaled ? g_mid / g_old : 1.;
     u_star.resize(n);
     w_star.resize(n);
     for (unsigned int i = 0; i < n; ++i)
@@ -668,10 +672,14 @@ namespace Fidus
   {
     TimerOutput::Scope scope(*timer, "fluid");
     boundary.set_shear_rate(shear(state.time));
+    if (!prm.external_forces.empty() && !external_force)
+      external_force =
+        std::make_unique<ParticleForceDensity<dim>>(solid, prm.external_forces);
     fluid_stats =
       solver->solve(solid,
                     exact ? static_cast<const Function<dim> &>(*exact) :
-                            boundary);
+                            boundary,
+                    external_force.get());
     if (fluid_stats.uzawa_converged)
       return;
     ++state.totals.uzawa_failures;

@@ -57,6 +57,12 @@ expect_error "unknown preconditioner" "Preconditioner" \
   "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
 expect_error "solid retraction leaves no solid" "Fluid/Solid retraction' has the value 0.8, which leaves particle 0 (radius 0.01) no solid.*allowed: values below" \
   "$(base | sed 's/Radius = 0.05/Radius = 0.01/'; printf 'subsection Fluid\n  set Solid retraction = 0.8\nend\nsubsection Mesh refinement\n  set Maximum level = 6\nend\n')"
+expect_error "external force count" "Particles/External force' has 3 forces for 2 particles; allowed: one force for all particles or one per particle" \
+  "$(base | sed 's/  set Radius = 0.05/  set Radius = 0.05\n  set External force = 1, 0; 0, 1; 1, 1/')"
+expect_error "external force coordinates" "Particles/External force' has the value '1, 0, 0' with 3 coordinates; allowed: exactly 2" \
+  "$(base | sed 's/  set Radius = 0.05/  set Radius = 0.05\n  set External force = 1, 0, 0/')"
+expect_error "external force without the fluid" "Particles/External force' is set, but the fluid is 'Fluid/Model = undisturbed shear'" \
+  "$(base; printf 'subsection Particles\n  set External force = 0, -1\nend\nsubsection Fluid\n  set Model = undisturbed shear\nend\n')"
 expect_error "lubrication range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 0\nend\n')"
 expect_error "negative roughness" "Roughness" \

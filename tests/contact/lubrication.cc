@@ -24,7 +24,8 @@
 //    Euler in position, the correction implicit in velocity): the gap stays
 //    positive at a time step with dt v < 1 / (1/h_c + 2/a), and its error
 //    against the exact solution of dh/dt = -v (zeta + 2 Rres) / (zeta + 2 R(h))
-//    falls at first order (ratio of errors at dt and dt/2 in [1.7, 2.3]).
+//    (R with its logarithmic term) falls at first order (ratio of errors at
+//    dt and dt/2 in [1.7, 2.3]).
 // i. Non-finite input throws ContactError.
 // j. A close pair turning as a doublet (relative velocity perpendicular to
 //    the line of centres): an explicit Euler step with the velocities of
@@ -817,14 +818,19 @@ namespace
   void
   test_squeeze_order()
   {
-    // Exact: (zeta h + 2C ln h) from h0 to h(T) = -v (zeta + 2 Rres) T,
-    // R(h) = C / h (3D), solved for h(T) by bisection.
+    // Exact: the integral of zeta + 2 R(h) from h0 to h(T) equals
+    // -v (zeta + 2 Rres) T, with R(h) = C / h + D ln(a / h) for two equal
+    // spheres (3D; D = 6 pi eta a 9/40), solved for h(T) by bisection.
     const double a = 0.1, h0 = 0.01, h_c = 0.02, v = 1., T = 0.025, eta = 1.3;
     const double zeta = 6. * pi * eta * a;
     const double C    = 6. * pi * eta * (a / 2) * (a / 2);
-    const double Rres = C / h_c;
-    const auto   g    = [&](const double h) {
-      return zeta * (h - h0) + 2. * C * std::log(h / h0) +
+    const double D    = 6. * pi * eta * a * 9. / 40.;
+    const double Rres = C / h_c + D * std::log(a / h_c);
+    const auto   F    = [&](const double h) { // an antiderivative of R
+      return C * std::log(h) + D * h * (std::log(a / h) + 1.);
+    };
+    const auto g = [&](const double h) {
+      return zeta * (h - h0) + 2. * (F(h) - F(h0)) +
              v * (zeta + 2. * Rres) * T;
     };
     double lo = 1e-12, hi = h0;

@@ -20,6 +20,10 @@ namespace Fidus::Contact
     /// flow: pairs closer than this are corrected, and the fluid solve is
     /// taken to carry the squeeze resistance of a gap h_c for them.
     double range = 0.;
+    /// The same for particle-wall gaps; < 0: the same as range. A wall is
+    /// a mesh face, so the mesh resolves the squeeze against it further
+    /// down than between two cut particle surfaces (doc/lubrication.md).
+    double wall_range = -1.;
     /// Gaps below roughness * (smaller radius of the pair; the radius for a
     /// wall) count as that gap: the resistance stops growing there and the
     /// contact model takes over.
@@ -100,7 +104,7 @@ namespace Fidus::Contact
   /**
    * Sub-grid lubrication: the squeeze resistance of the gaps the mesh cannot
    * resolve, added to the particle velocities of the fluid solve (the
-   * dense-suspension issue; doc/fluid.md, "Lubrication").
+   * dense-suspension issue; doc/lubrication.md, "Lubrication").
    *
    * The fluid solve gives force-free velocities u* of a system whose
    * resistance is modelled, per particle, as the isolated drag zeta_i and,
@@ -135,13 +139,16 @@ namespace Fidus::Contact
    * two gaps is fixed by lubrication theory). This resistance is symmetric,
    * positive semi-definite and zero for a rigid motion of the pair; it
    * reproduces the known sphere-wall log coefficients 8/15, 2/15 and 2/5
-   * and the cylinder-wall 2 sqrt(2) pi eta (a/h)^1/2 (doc/fluid.md,
+   * and the cylinder-wall 2 sqrt(2) pi eta (a/h)^1/2 (doc/lubrication.md,
    * "Lubrication").
    *
    * The squeeze resistance of two spheres (or a sphere and a plane, radius
    * infinite) with reduced radius R = a_1 a_2 / (a_1 + a_2) is 6 pi eta R^2
-   * / h, of two discs per unit length 3 sqrt(2) pi eta (R / h)^{3/2}
-   * (leading order of the Reynolds lubrication equation in the gap).
+   * / h + 6 pi eta a_1 b (1 + 7b + b^2) / (5 (1 + b)^3) log(1/xi), b = a_2 /
+   * a_1, xi = 2h / (a_1 + a_2) (h / a_1 for a plane, where the factor is
+   * 1/5; Jeffrey & Onishi 1984), of two discs per unit length
+   * 3 sqrt(2) pi eta (R / h)^{3/2} (leading order of the Reynolds
+   * lubrication equation in the gap).
    */
   class LubricationCorrection
   {
@@ -229,7 +236,7 @@ namespace Fidus::Contact
      * motion alone, (|r + dt w| - |r| - dt n.w) / dt, so that the gap
      * changes by dt times the lubricated normal speed. Without that, a pair
      * that turns as a doublet ratchets its gap open by |w_t|^2 dt^2 / 2l per
-     * step, which the lubrication then keeps from closing (doc/fluid.md).
+     * step, which the lubrication then keeps from closing (doc/lubrication.md).
      */
     LubricationStatistics
     correct(const std::vector<Vec3>   &positions,

@@ -112,8 +112,11 @@ namespace Fidus
     double solid_retraction = 0.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
-    bool   lubrication       = false;
-    double lubrication_range = 2.;
+    bool lubrication = false;
+    /// Ranges of particle pairs and of particle-wall gaps; 'auto': 2 and 2
+    /// in 2D, 0.3 and 0.2 in 3D.
+    double lubrication_range      = 2.;
+    double lubrication_wall_range = 2.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
     bool         lubrication_tangential     = true;
     double       linear_tolerance           = 1e-6;
@@ -133,6 +136,9 @@ namespace Fidus
     // Particles
     std::vector<std::array<double, 3>> positions;
     std::vector<double>                radii;
+    /// External force on each particle (Particles/External force); empty
+    /// when every particle is force-free.
+    std::vector<std::array<double, 3>> external_forces;
     std::string                        positions_file;
 
     // Contact

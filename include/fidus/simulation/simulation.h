@@ -17,6 +17,7 @@
 #include <fidus/io/field_output.h>
 #include <fidus/io/particle_output.h>
 #include <fidus/mesh/mesh_refiner.h>
+#include <fidus/particles/particle_force_density.h>
 #include <fidus/particles/solid_indicator.h>
 #include <fidus/rheology/hydrodynamic_stress.h>
 #include <fidus/rheology/suspension_stress.h>
@@ -204,9 +205,12 @@ namespace Fidus
     std::unique_ptr<StokesSolver<dim>>                                 solver;
     std::unique_ptr<MeshRefiner<dim>>                                  refiner;
     std::unique_ptr<ExactRigidInclusion<dim>>                          exact;
-    std::unique_ptr<HydrodynamicStress<dim>> hydrodynamic_stress;
-    BoundaryVelocity<dim>                    boundary;
-    SolidIndicator<dim>                      solid;
+    /// Body force of Particles/External force (null for force-free
+    /// particles).
+    std::unique_ptr<ParticleForceDensity<dim>> external_force;
+    std::unique_ptr<HydrodynamicStress<dim>>   hydrodynamic_stress;
+    BoundaryVelocity<dim>                      boundary;
+    SolidIndicator<dim>                        solid;
 
     std::unique_ptr<CsvWriter>        particles_csv, statistics_csv;
     std::unique_ptr<ParticleOutput>   particle_output;
