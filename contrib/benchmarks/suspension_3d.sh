@@ -11,6 +11,9 @@
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
 # from its newest checkpoint ('fidus --resume').
+# SHARED_CELLS=fluid releases cells shared by two particles (default rigid,
+# the seed's model), LUBRICATION=true adds the sub-grid lubrication
+# correction (default false).
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
 #          [strain, default 1] [N, default 24] [phi, default 0.25] \
 #          [max level, default 4] [time step, default 0.1]
@@ -60,6 +63,8 @@ subsection Fluid
   set Model = fictitious domain
   set Rigidity tolerance = 1e-2
   set Maximum Uzawa iterations = 5
+  set Shared cells = ${SHARED_CELLS:-rigid}
+  set Lubrication correction = ${LUBRICATION:-false}
 end
 subsection Particles
   set Radius = $a

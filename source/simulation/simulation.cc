@@ -194,6 +194,9 @@ namespace Fidus
                                                            shear(0.),
                                                            prm.viscosity);
       }
+    if (!prm.external_forces.empty())
+      external_force =
+        std::make_unique<ParticleForceDensity<dim>>(solid, prm.external_forces);
   }
 
 
@@ -672,9 +675,6 @@ namespace Fidus
   {
     TimerOutput::Scope scope(*timer, "fluid");
     boundary.set_shear_rate(shear(state.time));
-    if (!prm.external_forces.empty() && !external_force)
-      external_force =
-        std::make_unique<ParticleForceDensity<dim>>(solid, prm.external_forces);
     fluid_stats =
       solver->solve(solid,
                     exact ? static_cast<const Function<dim> &>(*exact) :
