@@ -227,7 +227,8 @@ namespace Fidus::Contact
      * Correct the predicted velocities @p u_star of particles at @p positions
      * with @p radii: @p u receives the velocities of the system with the
      * sub-grid squeeze resistance (u = u* where no pair is closer than the
-     * range). Only translations change. Throws ContactError if the positions
+     * range). Only translations change; with tangential terms the particles
+     * are taken not to turn (w* = 0). Throws ContactError if the positions
      * or velocities are not finite.
      *
      * With @p dt > 0 the velocities are meant for an explicit Euler step of
