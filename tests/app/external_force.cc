@@ -38,7 +38,9 @@ namespace
   const double a = 0.05, pi = 3.14159265358979323846;
 
   std::string
-  scene(const std::string &force, const unsigned int level, const std::string &dir)
+  scene(const std::string &force,
+        const unsigned int level,
+        const std::string &dir)
   {
     std::ostringstream prm;
     prm << "set Dimension = 2\n"
@@ -86,7 +88,9 @@ namespace
   }
 
   std::array<double, 2>
-  run(const std::string &force, const unsigned int level, const std::string &dir)
+  run(const std::string &force,
+      const unsigned int level,
+      const std::string &dir)
   {
     Fidus::run_simulation(
       Fidus::read_parameters_from_string(scene(force, level, dir)));
@@ -100,16 +104,15 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   redirect_warnings();
 
-  const double r = a / 0.5;
-  const double faxen =
-    4. * pi /
-    (std::log(1. / r) - 0.9157 + 1.7244 * std::pow(r, 2) -
-     1.7302 * std::pow(r, 4) + 2.4056 * std::pow(r, 6));
+  const double r     = a / 0.5;
+  const double faxen = 4. * pi /
+                       (std::log(1. / r) - 0.9157 + 1.7244 * std::pow(r, 2) -
+                        1.7302 * std::pow(r, 4) + 2.4056 * std::pow(r, 6));
 
   double ratio[2];
   for (const unsigned int level : {8u, 9u})
     {
-      const auto u = run("1, 0", level, "level_" + std::to_string(level));
+      const auto u     = run("1, 0", level, "level_" + std::to_string(level));
       ratio[level - 8] = (1. / u[0]) / faxen; // F / (eta U) over Faxen's
       check_range("level " + std::to_string(level) +
                     ": moves along the force only, |U_y| / U_x",

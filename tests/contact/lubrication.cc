@@ -830,8 +830,7 @@ namespace
       return C * std::log(h) + D * h * (std::log(a / h) + 1.);
     };
     const auto g = [&](const double h) {
-      return zeta * (h - h0) + 2. * (F(h) - F(h0)) +
-             v * (zeta + 2. * Rres) * T;
+      return zeta * (h - h0) + 2. * (F(h) - F(h0)) + v * (zeta + 2. * Rres) * T;
     };
     double lo = 1e-12, hi = h0;
     for (int k = 0; k < 200; ++k)
