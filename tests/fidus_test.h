@@ -5,12 +5,15 @@
 // OK or FAILED, so that the .output comparison fails when a check fails, and
 // the program's exit status is non-zero too.
 
+#include <algorithm>
 #include <cmath>
 #include <deal.II/base/mpi.h>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace FidusTest
 {
@@ -67,6 +70,31 @@ namespace FidusTest
     if (root())
       std::cout << what << " = " << std::setprecision(digits) << value
                 << std::endl;
+  }
+
+  /// The values of the column @p name of the CSV file @p path (a header
+  /// line, then rows), one per row.
+  inline std::vector<double>
+  csv_column(const std::string &path, const std::string &name)
+  {
+    std::ifstream            in(path);
+    std::string              line, item;
+    std::vector<std::string> header;
+    std::getline(in, line);
+    std::stringstream h(line);
+    while (std::getline(h, item, ','))
+      header.push_back(item);
+    const auto k =
+      std::find(header.begin(), header.end(), name) - header.begin();
+    std::vector<double> values;
+    while (std::getline(in, line))
+      {
+        std::stringstream s(line);
+        for (long c = 0; std::getline(s, item, ','); ++c)
+          if (c == k)
+            values.push_back(std::stod(item));
+      }
+    return values;
   }
 
   inline int

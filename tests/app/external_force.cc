@@ -69,22 +69,8 @@ namespace
   std::array<double, 2>
   velocity(const std::string &dir)
   {
-    std::ifstream            in(dir + "/particles.csv");
-    std::string              line, item;
-    std::vector<std::string> header;
-    std::getline(in, line);
-    std::stringstream h(line);
-    while (std::getline(h, item, ','))
-      header.push_back(item);
-    const auto column = [&](const std::string &name) {
-      return std::find(header.begin(), header.end(), name) - header.begin();
-    };
-    std::getline(in, line);
-    std::stringstream   s(line);
-    std::vector<double> values;
-    while (std::getline(s, item, ','))
-      values.push_back(std::stod(item));
-    return {{values[column("ux")], values[column("uy")]}};
+    const std::string path = dir + "/particles.csv";
+    return {{csv_column(path, "ux").front(), csv_column(path, "uy").front()}};
   }
 
   std::array<double, 2>

@@ -74,24 +74,7 @@ namespace
   std::vector<double>
   column(const std::string &dir, const std::string &name)
   {
-    std::ifstream            in(dir + "/statistics.csv");
-    std::string              line, item;
-    std::vector<std::string> header;
-    std::getline(in, line);
-    std::stringstream h(line);
-    while (std::getline(h, item, ','))
-      header.push_back(item);
-    const auto k =
-      std::find(header.begin(), header.end(), name) - header.begin();
-    std::vector<double> values;
-    while (std::getline(in, line))
-      {
-        std::stringstream s(line);
-        for (long c = 0; std::getline(s, item, ','); ++c)
-          if (c == k)
-            values.push_back(std::stod(item));
-      }
-    return values;
+    return csv_column(dir + "/statistics.csv", name);
   }
 
   /// Velocities of the pair at positions @p x with the tangential terms:
