@@ -96,7 +96,10 @@ namespace Fidus
         Patterns::Double(0.),
         "Uzawa stop on what the time loop uses instead: the particles' "
         "rigid velocities changed in the last iteration by less than this, "
-        "|dU| / (g a) and |d omega| / g with g the box's rms shear rate "
+        "|dU| / (g a) and |d omega| / g with g the box's rms shear rate, "
+        "or the larger |dU| / U_F and a |d omega| / U_F with U_F the speed "
+        "of the largest external force (|F| / (6 pi eta a) in 3D, "
+        "|F| / (4 pi eta) in 2D) "
         "(column rigid_velocity_change of statistics.csv). 0 (default): "
         "stop on Rigidity tolerance. The strain left in the solid falls "
         "slowly on cut-cell slivers that barely move the particles "

@@ -75,9 +75,10 @@ namespace Fidus
     const std::vector<RigidMotion> &previous,
     const std::vector<RigidMotion> &current,
     const SolidIndicator<dim>      &solid,
-    const double                    shear_rate)
+    const double                    shear_rate,
+    const double                    forced_velocity)
   {
-    if (!(shear_rate > 0.))
+    if (!(shear_rate > 0.) && !(forced_velocity > 0.))
       return 0.;
     double change = 0.;
     for (unsigned int i = 0; i < current.size(); ++i)
@@ -89,9 +90,10 @@ namespace Fidus
               std::pow(current[i].velocity[d] - previous[i].velocity[d], 2);
             dw2 += std::pow(current[i].omega[d] - previous[i].omega[d], 2);
           }
-        change = std::max({change,
-                           std::sqrt(du2) / (shear_rate * solid.radius(i)),
-                           std::sqrt(dw2) / shear_rate});
+        const double a       = solid.radius(i);
+        const double u_scale = std::max(shear_rate * a, forced_velocity);
+        change               = std::max(
+          {change, std::sqrt(du2) / u_scale, std::sqrt(dw2) * a / u_scale});
       }
     return change;
   }
@@ -344,7 +346,8 @@ namespace Fidus
                 rigid_velocity_change(previous_motions,
                                       motions,
                                       solid,
-                                      residual.shear_rate);
+                                      residual.shear_rate,
+                                      settings.forced_velocity_scale);
             std::swap(motions, previous_motions);
             if (settings.verbose &&
                 Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

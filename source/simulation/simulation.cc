@@ -71,6 +71,32 @@ namespace Fidus
         throw RunError(what + ": " + error);
     }
 
+    /**
+     * The speed an external force alone gives a particle, the largest over
+     * the particles: |F| / (6 pi eta a) for a sphere (Stokes) and
+     * |F| / (4 pi eta) for a disc (the 2D drag has no free-space value;
+     * 4 pi eta is its size at a few radii from walls). A scale for the
+     * Uzawa stop, not a prediction; 0 without forces.
+     */
+    double
+    forced_velocity_scale(const Parameters &prm)
+    {
+      double u = 0.;
+      for (unsigned int i = 0; i < prm.external_forces.size(); ++i)
+        {
+          double f2 = 0.;
+          for (const double c : prm.external_forces[i])
+            f2 += c * c;
+          const double drag =
+            prm.dimension == 3 ?
+              6. * M_PI * prm.viscosity *
+                prm.radii[std::min<std::size_t>(i, prm.radii.size() - 1)] :
+              4. * M_PI * prm.viscosity;
+          u = std::max(u, std::sqrt(f2) / drag);
+        }
+      return u;
+    }
+
   } // namespace
 
 
@@ -155,6 +181,7 @@ namespace Fidus
     ss.penalty_factor             = prm.penalty_factor;
     ss.rigidity_tolerance         = prm.rigidity_tolerance;
     ss.rigid_velocity_tolerance   = prm.rigid_velocity_tolerance;
+    ss.forced_velocity_scale      = forced_velocity_scale(prm);
     ss.sliver_threshold           = prm.sliver_threshold;
     ss.max_uzawa_iterations       = prm.max_uzawa_iterations;
     ss.linear_tolerance           = prm.linear_tolerance;

@@ -53,6 +53,12 @@ namespace Fidus
       /// Uzawa stop on the particles' rigid velocities instead of the
       /// strain in the solid (0: off; see solve()).
       double rigid_velocity_tolerance = 0.;
+      /// A velocity scale of the particles' forced motion (external
+      /// forces; 0: none). The rigid velocity change is measured against
+      /// the larger of it and the box's shear: a scene driven by forces
+      /// alone has a small rms shear rate that would make the measure
+      /// unreachably strict.
+      double forced_velocity_scale = 0.;
       /// Cells whose share of solid quadrature points is below this are
       /// held rigid by the penalty alone, not by the multiplier (0: off).
       double       sliver_threshold     = 0.;
@@ -315,12 +321,14 @@ namespace Fidus
     RigidityResidual
     rigidity_residual(const SolidIndicator<dim> &solid) const;
     /// Largest change of a particle's rigid velocity between @p previous
-    /// and @p current, scaled by @p shear_rate (Statistics).
+    /// and @p current, scaled by the larger of @p shear_rate times its
+    /// radius and @p forced_velocity (Statistics).
     static double
     rigid_velocity_change(const std::vector<RigidMotion> &previous,
                           const std::vector<RigidMotion> &current,
                           const SolidIndicator<dim>      &solid,
-                          double                          shear_rate);
+                          double                          shear_rate,
+                          double                          forced_velocity);
     /// One FGMRES solve of the current system, from zero, to @p tolerance
     /// (relative to the right-hand side).
     unsigned int
