@@ -347,14 +347,19 @@ namespace Fidus
     std::vector<SymmetricTensor<2, dim>> symgrad(dofs_per_cell);
     std::vector<double>                  div(dofs_per_cell);
     std::vector<double>                  phi_p(dofs_per_cell);
-    std::vector<Tensor<1, dim>>          phi_u(dofs_per_cell);
     std::vector<double>                  eta(n_q);
     std::vector<unsigned int>            cands;
     dealii::Vector<double>               force(dim + 1);
     std::vector<bool>                    is_velocity(dofs_per_cell);
     const bool                           with_a = velocity_block_assembled();
+    // The cell's velocity and pressure DoFs, so that each coupling is
+    // visited once (the pairs of a Q2-Q1 cell in 3D are 95 % velocity).
+    std::vector<unsigned int> u_dofs, p_dofs;
     for (unsigned int k = 0; k < dofs_per_cell; ++k)
-      is_velocity[k] = fe.system_to_component_index(k).first < dim;
+      {
+        is_velocity[k] = fe.system_to_component_index(k).first < dim;
+        (is_velocity[k] ? u_dofs : p_dofs).push_back(k);
+      }
 
     shared.assign(triangulation.n_active_cells(), false);
     sliver.assign(triangulation.n_active_cells(), false);
@@ -431,46 +436,56 @@ namespace Fidus
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const double JxW = fe_values.JxW(q);
-            for (unsigned int k = 0; k < dofs_per_cell; ++k)
+            for (const unsigned int k : u_dofs)
               {
-                symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
-                div[k]     = fe_values[velocities].divergence(k, q);
-                phi_p[k]   = fe_values[pressure].value(k, q);
-                phi_u[k]   = fe_values[velocities].value(k, q);
+                if (with_a)
+                  symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
+                div[k] = fe_values[velocities].divergence(k, q) * JxW;
               }
-            for (unsigned int k = 0; k < dofs_per_cell; ++k)
-              for (unsigned int l = 0; l <= k; ++l)
+            for (const unsigned int k : p_dofs)
+              phi_p[k] = fe_values[pressure].value(k, q);
+            if (with_a)
+              {
+                const double w = 2. * eta[q] * JxW;
+                for (unsigned int i = 0; i < u_dofs.size(); ++i)
+                  for (unsigned int j = 0; j <= i; ++j)
+                    cell_matrix(u_dofs[i], u_dofs[j]) +=
+                      w * (symgrad[u_dofs[i]] * symgrad[u_dofs[j]]);
+              }
+            for (const unsigned int k : u_dofs)
+              for (const unsigned int l : p_dofs)
                 {
-                  if (is_velocity[k] && is_velocity[l])
-                    {
-                      if (with_a)
-                        cell_matrix(k, l) +=
-                          2. * eta[q] * (symgrad[k] * symgrad[l]) * JxW;
-                    }
-                  else if (is_velocity[k] != is_velocity[l])
-                    cell_matrix(k, l) -=
-                      (div[k] * phi_p[l] + phi_p[k] * div[l]) * JxW;
-                  else
-                    cell_prec(k, l) += phi_p[k] * phi_p[l] / eta[q] * JxW;
+                  const double b = div[k] * phi_p[l];
+                  cell_matrix(k, l) -= b;
+                  cell_matrix(l, k) -= b;
                 }
+            const double w = JxW / eta[q];
+            for (unsigned int i = 0; i < p_dofs.size(); ++i)
+              for (unsigned int j = 0; j <= i; ++j)
+                cell_prec(p_dofs[i], p_dofs[j]) +=
+                  w * phi_p[p_dofs[i]] * phi_p[p_dofs[j]];
             if (body_force)
               {
                 body_force->vector_value(fe_values.quadrature_point(q), force);
-                for (unsigned int k = 0; k < dofs_per_cell; ++k)
-                  if (is_velocity[k])
-                    {
-                      const unsigned int c =
-                        fe.system_to_component_index(k).first;
-                      cell_rhs(k) += force[c] * phi_u[k][c] * JxW;
-                    }
+                for (const unsigned int k : u_dofs)
+                  {
+                    const unsigned int c =
+                      fe.system_to_component_index(k).first;
+                    cell_rhs(k) +=
+                      force[c] * fe_values[velocities].value(k, q)[c] * JxW;
+                  }
               }
           }
-        for (unsigned int k = 0; k < dofs_per_cell; ++k)
-          for (unsigned int l = k + 1; l < dofs_per_cell; ++l)
-            {
-              cell_matrix(k, l) = cell_matrix(l, k);
-              cell_prec(k, l)   = cell_prec(l, k);
-            }
+        // The velocity-velocity and pressure-pressure parts were summed in
+        // one triangle (in the order of u_dofs and p_dofs, which is the
+        // cell's order): copy it to the other.
+        for (unsigned int i = 0; i < u_dofs.size(); ++i)
+          for (unsigned int j = 0; j < i; ++j)
+            cell_matrix(u_dofs[j], u_dofs[i]) =
+              cell_matrix(u_dofs[i], u_dofs[j]);
+        for (unsigned int i = 0; i < p_dofs.size(); ++i)
+          for (unsigned int j = 0; j < i; ++j)
+            cell_prec(p_dofs[j], p_dofs[i]) = cell_prec(p_dofs[i], p_dofs[j]);
 
         constraints.distribute_local_to_global(cell_matrix,
                                                cell_rhs,

@@ -151,7 +151,15 @@ namespace Fidus
                     << preconditioners->multigrid->get_info().smoother_blocks
                     << ", update "
                     << preconditioners->multigrid->get_info().update_seconds
-                    << " s" << std::endl;
+                    << " s (viscosity "
+                    << preconditioners->multigrid->get_info().viscosity_seconds
+                    << ", diagonals "
+                    << preconditioners->multigrid->get_info().diagonal_seconds
+                    << ", blocks "
+                    << preconditioners->multigrid->get_info().blocks_seconds
+                    << ", coarse "
+                    << preconditioners->multigrid->get_info().coarse_seconds
+                    << ")" << std::endl;
       }
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

@@ -191,16 +191,24 @@ namespace Fidus
         MGLevelObject<typename Smoother::AdditionalData> smoother_data(
           0,
           max_level);
+        Timer part;
+        this->info.blocks_seconds = this->info.diagonal_seconds = 0.;
         if (galerkin())
           compute_moments(viscosity);
-        this->info.smoother_blocks = 0;
+        this->info.viscosity_seconds = part.wall_time();
+        this->info.smoother_blocks   = 0;
         for (unsigned int l = 0; l <= max_level; ++l)
           {
+            part.restart();
             if (galerkin() && l < max_level)
               fill_galerkin_viscosity(l);
             else
               fill_viscosity(l, viscosity);
+            this->info.viscosity_seconds += part.wall_time();
+            part.restart();
             operators[l]->compute_diagonal();
+            this->info.diagonal_seconds += part.wall_time();
+            part.restart();
             // Level 0 is solved, not smoothed: no blocks there.
             auto preconditioner = std::make_shared<SmootherPreconditioner>();
             preconditioner->initialize(*operators[l],
@@ -209,6 +217,7 @@ namespace Fidus
                                        l > 0 ? settings.smoother_blocks :
                                                SmootherBlocks::none,
                                        ghost_viscosity(l, viscosity));
+            this->info.blocks_seconds += part.wall_time();
             this->info.smoother_blocks += preconditioner->n_blocks();
             smoother_data[l].preconditioner = preconditioner;
             smoother_data[l].degree         = settings.smoother_degree;
@@ -226,6 +235,7 @@ namespace Fidus
         smoother->initialize(operators, smoother_data);
 
         // Coarse level: assembled from the matrix-free operator, CG with AMG.
+        part.restart();
         coarse_matrix.clear();
         {
           const DoFHandler<dim>            &dof0 = dof_handlers[0];
@@ -251,7 +261,8 @@ namespace Fidus
                                              false,
                                              false);
         coarse_cg = std::make_unique<SolverCG<VectorType>>(*coarse_control);
-        coarse    = std::make_unique<
+        this->info.coarse_seconds = part.wall_time();
+        coarse                    = std::make_unique<
           MGCoarseGridIterativeSolver<VectorType,
                                       SolverCG<VectorType>,
                                       Operator,

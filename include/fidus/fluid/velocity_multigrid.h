@@ -88,6 +88,12 @@ namespace Fidus
       types::global_dof_index coarse_dofs    = 0;
       double                  setup_seconds  = 0.; ///< last setup()
       double                  update_seconds = 0.; ///< last update()
+      /// Parts of the last update(): the levels' viscosity tables, their
+      /// diagonals, the smoothers' cell blocks, the coarse matrix and AMG.
+      double viscosity_seconds = 0.;
+      double diagonal_seconds  = 0.;
+      double blocks_seconds    = 0.;
+      double coarse_seconds    = 0.;
       /// Blocks of the smoothers, summed over levels (this rank).
       unsigned int smoother_blocks = 0;
     };

@@ -33,8 +33,8 @@ namespace Fidus
    *   the finest one. Where a cell's viscosity is the same at all its points
    *   (uniform_viscosity), the Gauss points are exact as well and about
    *   (2 degree + 1)^dim / (degree + 1)^dim times cheaper, so products with
-   *   the operator take them there; the diagonal and the coarse matrix,
-   *   computed once per set-up, take the Gauss-Lobatto points everywhere.
+   *   the operator and its diagonal take them there; the coarse matrix,
+   *   computed once per set-up, takes the Gauss-Lobatto points everywhere.
    *
    * Rows of DoFs with a Dirichlet constraint act as the identity (from
    * MatrixFreeOperators::Base), hanging-node and periodic constraints are
@@ -96,22 +96,62 @@ namespace Fidus
 
     /// Compute the inverse diagonal (the Chebyshev smoother's
     /// preconditioner); call after the viscosity changed.
+    ///
+    /// The diagonal is linear in the viscosity table. After the first
+    /// call on a mesh, only the change of the table since the last call
+    /// is computed, on the cell batches where it changed (the cells the
+    /// particles crossed): D(eta) = D(eta_old) + D(eta - eta_old).
     void
     compute_diagonal() override
     {
+      const bool incremental =
+        diagonal_sum.size() > 0 &&
+        diagonal_viscosity.size(0) == viscosity.size(0) &&
+        diagonal_viscosity.size(1) == viscosity.size(1);
+      const unsigned int n_batches = viscosity.size(0);
+      if (!incremental)
+        {
+          this->data->initialize_dof_vector(diagonal_sum);
+          selected_batches.assign(n_batches, 1);
+          if (galerkin_level)
+            batch_uniform = uniform_viscosity;
+          else
+            batch_uniform.assign(n_batches, 1);
+          add_diagonal(diagonal_sum);
+        }
+      else
+        {
+          // The change: on a batch whose viscosity changed, uniform only if
+          // it is uniform before and after (the Gauss points are then
+          // exact for the change too).
+          selected_batches.assign(n_batches, 0);
+          batch_uniform.assign(n_batches, 1);
+          for (unsigned int b = 0; b < n_batches; ++b)
+            {
+              for (unsigned int q = 0; q < viscosity.size(1); ++q)
+                for (unsigned int v = 0; v < VectorizedArray<double>::size();
+                     ++v)
+                  if (viscosity(b, q)[v] != diagonal_viscosity(b, q)[v])
+                    selected_batches[b] = 1;
+              if (galerkin_level)
+                batch_uniform[b] = uniform_viscosity[b] && diagonal_uniform[b];
+            }
+          std::swap(viscosity, diagonal_viscosity);
+          // viscosity now holds the old table, diagonal_viscosity the new.
+          for (unsigned int b = 0; b < n_batches; ++b)
+            if (selected_batches[b])
+              for (unsigned int q = 0; q < viscosity.size(1); ++q)
+                viscosity(b, q) = diagonal_viscosity(b, q) - viscosity(b, q);
+          add_diagonal(diagonal_sum);
+          std::swap(viscosity, diagonal_viscosity);
+        }
+      diagonal_viscosity = viscosity;
+      diagonal_uniform   = uniform_viscosity;
+
       this->inverse_diagonal_entries =
         std::make_shared<DiagonalMatrix<VectorType>>();
       VectorType &diagonal = this->inverse_diagonal_entries->get_vector();
-      this->data->initialize_dof_vector(diagonal);
-      with_points([&](auto n, const unsigned int quadrature) {
-        MatrixFreeTools::compute_diagonal(
-          *this->data,
-          diagonal,
-          &VelocityOperator::template cell_term<decltype(n)::value>,
-          this,
-          0,
-          quadrature);
-      });
+      diagonal             = diagonal_sum;
       // Constrained rows (zero here) become the identity.
       for (auto &d : diagonal)
         d = d > 0. ? 1. / d : 1.;
@@ -167,6 +207,58 @@ namespace Fidus
     }
 
   private:
+    /// The diagonal of the last compute_diagonal() (not inverted), and the
+    /// viscosity table and uniform flags it was computed with.
+    VectorType                        diagonal_sum;
+    Table<2, VectorizedArray<double>> diagonal_viscosity;
+    std::vector<unsigned char>        diagonal_uniform;
+    /// The batches add_diagonal() visits, and which of them take the Gauss
+    /// points.
+    std::vector<unsigned char> selected_batches;
+    std::vector<unsigned char> batch_uniform;
+
+    /// Add to @p diagonal the diagonal of the operator with the current
+    /// viscosity table on the selected batches. On a Galerkin level in two
+    /// passes, each over the batches the other skips: the Gauss points
+    /// where the viscosity is uniform (exact there, and (2 degree + 1)^dim
+    /// / (degree + 1)^dim times cheaper), the Gauss-Lobatto points where a
+    /// surface cuts the cell.
+    void
+    add_diagonal(VectorType &diagonal) const
+    {
+      MatrixFreeTools::compute_diagonal(
+        *this->data,
+        diagonal,
+        &VelocityOperator::template selected_cell_term<gauss_points, true>,
+        this,
+        0,
+        0);
+      if (galerkin_level)
+        MatrixFreeTools::compute_diagonal(
+          *this->data,
+          diagonal,
+          &VelocityOperator::template selected_cell_term<galerkin_points,
+                                                         false>,
+          this,
+          0,
+          1);
+    }
+
+    /// cell_term on the selected batches whose batch_uniform flag is
+    /// @p uniform, zero on the others (add_diagonal()).
+    template <int n_points, bool uniform>
+    void
+    selected_cell_term(EvaluatorWith<n_points> &phi) const
+    {
+      const unsigned int batch = phi.get_current_cell_index();
+      if (selected_batches[batch] &&
+          static_cast<bool>(batch_uniform[batch]) == uniform)
+        cell_term<n_points>(phi);
+      else
+        for (unsigned int i = 0; i < phi.dofs_per_cell; ++i)
+          phi.begin_dof_values()[i] = VectorizedArray<double>();
+    }
+
     template <int n_points>
     void
     plain_cell_range(const MatrixFree<dim, double>               &data,
