@@ -46,7 +46,10 @@ for scene in $scenes; do
       echo "  set Verbosity = verbose"
       echo "end"
     } > "$run.prm"
-    "${launch[@]}" "$fidus" "$run.prm" > "$run.log" 2>&1
+    if ! "${launch[@]}" "$fidus" "$run.prm" > "$run.log" 2>&1; then
+      echo "| $scene | $label | failed: $(tail -1 "$run.log") |"
+      continue
+    fi
     # The k-th Stokes line of the log is step k's solve; a multigrid line
     # (if any) comes before it. statistics.csv says whether the step
     # remeshed and how many FGMRES iterations it took.

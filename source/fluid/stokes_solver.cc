@@ -142,6 +142,49 @@ namespace Fidus
     relevant_partitioning = {locally_relevant_dofs.get_view(0, n_u),
                              locally_relevant_dofs.get_view(n_u, n_u + n_p)};
 
+    // The multigrid hierarchy first: whether it can be built on this mesh
+    // decides whether the system holds an assembled velocity block.
+    multigrid_active = settings.geometric_multigrid;
+    if (multigrid_active)
+      {
+        typename VelocityMultigrid<dim>::Settings mg;
+        mg.degree          = settings.degree;
+        mg.smoother_degree = settings.mg_smoother_degree;
+        mg.smoother_blocks = settings.mg_smoother_blocks == "cut cells" ?
+                               SmootherBlocks::cut_cells :
+                               SmootherBlocks::none;
+        mg.averaging       = VelocityMultigrid<dim>::parse_averaging(
+          settings.mg_viscosity_averaging);
+        try
+          {
+            preconditioners->multigrid =
+              std::make_unique<VelocityMultigrid<dim>>(triangulation, mg);
+            preconditioners->multigrid->setup(dof_handler,
+                                              periodic_directions,
+                                              dirichlet_ids);
+          }
+        catch (const ExceptionBase &e)
+          {
+            // deal.II 9.4's global-coarsening transfer refuses some
+            // adaptive meshes (a coarsened copy that is finer than the mesh
+            // above it somewhere; seen in 2D at maximum level 9 with a disc
+            // a tenth of its radius from a wall). This mesh is solved with
+            // the AMG instead, and the run says so.
+            preconditioners->multigrid.reset();
+            multigrid_active = false;
+            ++multigrid_fallbacks;
+            if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+              std::cerr << "fidus: warning: the geometric multigrid could not "
+                           "be built on this mesh ("
+                        << triangulation.n_global_active_cells()
+                        << " cells, mesh " << multigrid_fallbacks
+                        << " of this run where that happened); it is solved "
+                           "with the AMG preconditioner instead. deal.II "
+                           "said: "
+                        << e.get_exc_name() << std::endl;
+          }
+      }
+
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
     make_constraints(Functions::ZeroFunction<dim>(dim + 1));
@@ -204,23 +247,6 @@ namespace Fidus
                       mpi_communicator);
     solid_mask.reinit(owned_partitioning, mpi_communicator);
     multiplier_valid = false;
-
-    if (settings.geometric_multigrid)
-      {
-        typename VelocityMultigrid<dim>::Settings mg;
-        mg.degree          = settings.degree;
-        mg.smoother_degree = settings.mg_smoother_degree;
-        mg.smoother_blocks = settings.mg_smoother_blocks == "cut cells" ?
-                               SmootherBlocks::cut_cells :
-                               SmootherBlocks::none;
-        mg.averaging       = VelocityMultigrid<dim>::parse_averaging(
-          settings.mg_viscosity_averaging);
-        preconditioners->multigrid =
-          std::make_unique<VelocityMultigrid<dim>>(triangulation, mg);
-        preconditioners->multigrid->setup(dof_handler,
-                                          periodic_directions,
-                                          dirichlet_ids);
-      }
   }
 
 
@@ -510,8 +536,7 @@ namespace Fidus
   bool
   StokesSolver<dim>::velocity_block_assembled() const
   {
-    return !(settings.geometric_multigrid &&
-             settings.matrix_free_velocity_block);
+    return !(multigrid_active && settings.matrix_free_velocity_block);
   }
 
 

@@ -42,7 +42,7 @@ namespace Fidus
                                            const Function<dim> *fluid_viscosity)
   {
     preconditioners->jacobi.initialize(preconditioner_matrix.block(1, 1));
-    if (settings.geometric_multigrid)
+    if (multigrid_active)
       {
         std::vector<unsigned int> candidates;
         preconditioners->multigrid->update(
@@ -136,7 +136,7 @@ namespace Fidus
           mg->apply_velocity_block(dst, src);
         });
     build_rigid_body_correction(solid);
-    if (settings.geometric_multigrid)
+    if (multigrid_active)
       {
         // Two products with each level's operator: a check of the
         // hierarchy that costs a fraction of one V-cycle.

@@ -105,7 +105,7 @@ namespace Fidus
   StokesSolver<dim>::solve_linear(Statistics &stats, const double tolerance)
   {
     const auto &Q = preconditioners->rigid_body_correction;
-    if (settings.geometric_multigrid)
+    if (multigrid_active)
       return solve_linear(
         stats,
         DeflatedVelocityPreconditioner<VelocityMultigrid<dim>>(

@@ -421,6 +421,12 @@ namespace Fidus
     TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
     TrilinosWrappers::MPI::BlockVector  solid_mask;
     bool                                multiplier_valid = false;
+    /// Whether the current mesh is solved with the geometric multigrid:
+    /// Settings::geometric_multigrid, unless its hierarchy could not be
+    /// built on this mesh (setup_dofs() then falls back to the AMG).
+    bool multigrid_active = false;
+    /// Meshes on which that fallback happened.
+    unsigned int multigrid_fallbacks = 0;
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
