@@ -7,12 +7,10 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
-#include <deque>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/block_schur_preconditioner.h>
 #include <fidus/fluid/deflated_velocity_preconditioner.h>
@@ -281,21 +279,14 @@ namespace Fidus
       {
         stats.uzawa_converged = false;
         // The Uzawa map  lambda -> lambda + rho M u(lambda)  (M: the solid
-        // mask) is affine in lambda. Plain Uzawa contracts each mode by
-        // 1 / (1 + rho mu), where mu measures how much of the mode's strain
-        // lies in the solid; modes that live on thin solid slivers of cut
-        // cells have tiny mu and stall it. Anderson acceleration (a small
-        // least-squares combination of the last few updates, one linear
-        // solve per iteration as before) removes those modes in a few steps.
-        // The least squares are posed in the energy inner product of the
-        // velocity block, a^T A b: the rigid part of an update (which does
-        // not change the load, since e(rigid) = 0) then weighs only eta_f,
-        // its strain in the solid weighs eta_s.
-        constexpr unsigned int                    depth = 5;
-        std::deque<TrilinosWrappers::MPI::Vector> dX, dF, AdF;
-        TrilinosWrappers::MPI::Vector x_prev, f_prev, Af_prev, f, Af;
-        const VelocityBlock          &A = *velocity_block;
-        double previous_residual        = std::numeric_limits<double>::max();
+        // mask) is affine in lambda; each iteration is one linear solve.
+        // Plain Uzawa contracts each mode by 1 / (1 + rho mu), where mu
+        // measures how much of the mode's strain lies in the solid; modes
+        // on thin solid slivers of cut cells contract slowly, and the
+        // no-progress rule below ends such a loop (doc/fluid.md).
+        // The masked velocity of the update, allocated once per solve.
+        TrilinosWrappers::MPI::Vector update(distributed_multiplier.block(0));
+        double previous_residual = std::numeric_limits<double>::max();
         // The particles' rigid velocities after each iteration: what the
         // time loop takes from the solve. With Rigid velocity tolerance the
         // loop stops on their change instead of on the strain left in the
@@ -402,58 +393,14 @@ namespace Fidus
             // pair that satisfies the momentum equation.
             if (k + 1 == settings.max_uzawa_iterations)
               break;
-            // f = rho M u: the plain Uzawa update.
-            f = distributed_solution.block(0);
-            f.scale(solid_mask.block(0));
-            f *= rho;
-            if (Af.size() != f.size())
-              Af.reinit(f);
-            A.vmult(Af, f);
-            TrilinosWrappers::MPI::Vector &x = distributed_multiplier.block(0);
-            if (k > 0)
-              {
-                dX.emplace_back(x);
-                dX.back() -= x_prev;
-                dF.emplace_back(f);
-                dF.back() -= f_prev;
-                AdF.emplace_back(Af);
-                AdF.back() -= Af_prev;
-                if (dX.size() > depth)
-                  {
-                    dX.pop_front();
-                    dF.pop_front();
-                    AdF.pop_front();
-                  }
-              }
-            x_prev  = x;
-            f_prev  = f;
-            Af_prev = Af;
-            x += f;
-            if (settings.anderson_acceleration && !dF.empty())
-              {
-                // min |f - dF g|_A: normal equations, lightly regularised.
-                const unsigned int       m = dF.size();
-                LAPACKFullMatrix<double> G(m, m);
-                dealii::Vector<double>   g(m);
-                for (unsigned int i = 0; i < m; ++i)
-                  {
-                    g(i) = AdF[i] * f;
-                    for (unsigned int j = 0; j <= i; ++j)
-                      G(i, j) = G(j, i) = AdF[i] * dF[j];
-                  }
-                double trace = 0;
-                for (unsigned int i = 0; i < m; ++i)
-                  trace += G(i, i);
-                for (unsigned int i = 0; i < m; ++i)
-                  G(i, i) += 1e-12 * trace;
-                G.compute_lu_factorization();
-                G.solve(g);
-                for (unsigned int i = 0; i < m; ++i)
-                  {
-                    x.add(-g(i), dX[i]);
-                    x.add(-g(i), dF[i]);
-                  }
-              }
+            // lambda += rho M u: the plain Uzawa update, in place.
+            {
+              TrilinosWrappers::MPI::Vector &x =
+                distributed_multiplier.block(0);
+              update = distributed_solution.block(0);
+              update.scale(solid_mask.block(0));
+              x.add(rho, update);
+            }
             multiplier = distributed_multiplier;
           }
         if (!last_exact)

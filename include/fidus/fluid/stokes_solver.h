@@ -95,10 +95,6 @@ namespace Fidus
       /// two particles) as fluid; false: the seed's model (rigid wherever
       /// there is solid, which cannot be met there).
       bool release_shared_cells = false;
-      /// Accelerate the Uzawa loop (Anderson mixing of depth 5 in the energy
-      /// inner product). Off by default: on cut-cell slivers it stagnates at
-      /// the same residual as plain Uzawa (see doc/fluid.md).
-      bool anderson_acceleration = false;
       /// Print one line per Uzawa iteration (rank 0).
       bool verbose = false;
     };
