@@ -14,7 +14,8 @@
 # MAX_UZAWA=<n> (default 3), SHARED_CELLS=rigid|fluid (default rigid) and
 # REUSE=true|false (default true) set Fluid/Maximum Uzawa iterations,
 # Fluid/Shared cells and Fluid/Reuse multiplier; INEXACT=<factor> (default
-# 0) sets Fluid/Linear solver/Inexact Uzawa factor.
+# 0) sets Fluid/Linear solver/Inexact Uzawa factor; LUBRICATION=true|false
+# (default false) sets Fluid/Lubrication correction.
 # Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
@@ -61,6 +62,7 @@ subsection Fluid
   set Maximum Uzawa iterations = ${MAX_UZAWA:-3}
   set Shared cells = ${SHARED_CELLS:-rigid}
   set Reuse multiplier = ${REUSE:-true}
+  set Lubrication correction = ${LUBRICATION:-false}
   subsection Linear solver
     set Inexact Uzawa factor = ${INEXACT:-0}
   end
