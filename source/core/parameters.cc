@@ -202,6 +202,7 @@ namespace Fidus
       penalty_factor           = prm.get_double("Penalty factor");
       velocity_degree          = prm.get_integer("Velocity degree");
       rigidity_tolerance       = prm.get_double("Rigidity tolerance");
+      rigidity_per_particle    = prm.get("Rigidity measure") == "particle";
       rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
       sliver_threshold         = prm.get_double("Sliver threshold");
       max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");

@@ -91,6 +91,20 @@ namespace Fidus
                         "the default penalty factor the velocity error is "
                         "already at the discretisation error there.");
       prm.declare_entry(
+        "Rigidity measure",
+        "box",
+        Patterns::Selection("box|particle"),
+        "What Rigidity tolerance bounds. box: the strain in all of the "
+        "solid relative to the strain in the whole box, "
+        "||e(u)||_{L2(solid)} / ||e(u)||_{L2(box)}, which for the same "
+        "rigidity changes with the box's size and the particle count. "
+        "particle: the largest over the particles of the rms strain rate "
+        "in the particle relative to the box's rms shear rate g, "
+        "max_i ||e(u)||_{L2(P_i)} / (g |P_i|^{1/2}), the same for one "
+        "particle in any box. statistics.csv has both "
+        "(rigidity_residual: the chosen one; particle_rigidity_residual). "
+        "doc/fluid.md compares them.");
+      prm.declare_entry(
         "Rigid velocity tolerance",
         "0",
         Patterns::Double(0.),

@@ -33,8 +33,10 @@ namespace Fidus
     const FEValuesExtractors::Vector     velocities(0);
     std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
     std::vector<unsigned int>            cands;
-    // In the held solid, in shared cells, total, box volume.
-    double sums[4] = {0, 0, 0, 0};
+    // In the held solid, in shared cells, total, box volume; then, per
+    // particle, the held solid's strain and volume.
+    const unsigned int  n_particles = solid.n_particles();
+    std::vector<double> sums(4 + 2 * n_particles, 0.);
     for (const auto &cell : cells)
       if (cell->is_locally_owned())
         {
@@ -49,10 +51,20 @@ namespace Fidus
               const double e2 = (eps[q] * eps[q]) * fe_values.JxW(q);
               sums[2] += e2;
               sums[3] += fe_values.JxW(q);
-              if (!cands.empty() &&
+              const int k =
+                cands.empty() ?
+                  -1 :
                   solid.particle_containing(fe_values.quadrature_point(q),
-                                            cands) >= 0)
-                sums[shared_cell ? 1 : 0] += e2;
+                                            cands);
+              if (k < 0)
+                continue;
+              sums[shared_cell ? 1 : 0] += e2;
+              if (!shared_cell)
+                {
+                  const unsigned int i = solid.owner(k);
+                  sums[4 + 2 * i] += e2;
+                  sums[5 + 2 * i] += fe_values.JxW(q);
+                }
             }
         }
     Utilities::MPI::sum(sums, mpi_communicator, sums);
@@ -62,7 +74,26 @@ namespace Fidus
     r.held       = std::sqrt(sums[0] / sums[2]);
     r.released   = std::sqrt(sums[1] / sums[2]);
     r.shear_rate = std::sqrt(2. * sums[2] / sums[3]);
+    // A particle whose solid is all released has no held part to measure.
+    for (unsigned int i = 0; i < n_particles; ++i)
+      if (sums[5 + 2 * i] > 0.)
+        r.particle =
+          std::max(r.particle,
+                   std::sqrt(sums[4 + 2 * i] / sums[5 + 2 * i]) / r.shear_rate);
     return r;
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::record_residual(Statistics             &stats,
+                                     const RigidityResidual &residual) const
+  {
+    stats.rigidity_residual =
+      settings.rigidity_per_particle ? residual.particle : residual.held;
+    stats.particle_rigidity_residual = residual.particle;
+    stats.shared_residual            = residual.released;
   }
 
 
@@ -324,9 +355,8 @@ namespace Fidus
             stats.linear_iterations += solve_linear(stats, next_tolerance);
             ++stats.uzawa_iterations;
             const RigidityResidual residual = rigidity_residual(solid);
-            stats.rigidity_residual         = residual.held;
-            stats.shared_residual           = residual.released;
-            motions                         = compute_rigid_motions(dof_handler,
+            record_residual(stats, residual);
+            motions = compute_rigid_motions(dof_handler,
                                             cells,
                                             solution,
                                             solid,
@@ -408,9 +438,7 @@ namespace Fidus
             // The right-hand side is still that of the last multiplier.
             stats.linear_iterations +=
               solve_linear(stats, settings.linear_tolerance);
-            const RigidityResidual residual = rigidity_residual(solid);
-            stats.rigidity_residual         = residual.held;
-            stats.shared_residual           = residual.released;
+            record_residual(stats, rigidity_residual(solid));
             if (!std::isfinite(stats.rigidity_residual))
               throw RunError("the Uzawa loop produced a non-finite rigidity "
                              "residual (NaN or inf in the velocity)");

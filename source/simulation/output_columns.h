@@ -78,6 +78,9 @@ namespace Fidus
       c.push_back("lubrication_pairs");
       // The Uzawa loop's last change of the rigid velocities.
       c.push_back("rigid_velocity_change");
+      // The largest per-particle rigidity residual (Fluid/Rigidity
+      // measure), whichever measure the loop stops on.
+      c.push_back("particle_rigidity_residual");
       return c;
     }
   } // namespace OutputColumns

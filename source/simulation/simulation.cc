@@ -180,6 +180,7 @@ namespace Fidus
     ss.viscosity                  = prm.viscosity;
     ss.penalty_factor             = prm.penalty_factor;
     ss.rigidity_tolerance         = prm.rigidity_tolerance;
+    ss.rigidity_per_particle      = prm.rigidity_per_particle;
     ss.rigid_velocity_tolerance   = prm.rigid_velocity_tolerance;
     ss.forced_velocity_scale      = forced_velocity_scale(prm);
     ss.sliver_threshold           = prm.sliver_threshold;
@@ -714,7 +715,8 @@ namespace Fidus
     m << "step " << state.step << ", t = " << state.time
       << ": the Uzawa loop stopped after " << fluid_stats.uzawa_iterations
       << (fluid_stats.uzawa_iterations == 1 ? " iteration" : " iterations")
-      << " at rigidity residual " << fluid_stats.rigidity_residual;
+      << " at " << (prm.rigidity_per_particle ? "per-particle " : "")
+      << "rigidity residual " << fluid_stats.rigidity_residual;
     if (prm.rigid_velocity_tolerance > 0.)
       m << ", rigid velocity change " << fluid_stats.rigid_velocity_change
         << " > " << prm.rigid_velocity_tolerance

@@ -145,6 +145,7 @@ namespace Fidus
     row.push_back(
       double(lubrication_stats.n_pairs + lubrication_stats.n_wall_pairs));
     row.push_back(fluid_stats.rigid_velocity_change);
+    row.push_back(fluid_stats.particle_rigidity_residual);
     statistics_csv->write_row(row);
 
     if (field_output && s.step % prm.field_output_interval == 0)

@@ -50,6 +50,10 @@ namespace Fidus
       double       viscosity          = 1.;
       double       penalty_factor     = 1e3;
       double       rigidity_tolerance = 1e-3;
+      /// Compare rigidity_tolerance with the per-particle rigidity
+      /// residual (RigidityResidual::particle) instead of the box's
+      /// (RigidityResidual::held).
+      bool rigidity_per_particle = false;
       /// Uzawa stop on the particles' rigid velocities instead of the
       /// strain in the solid (0: off; see solve()).
       double rigid_velocity_tolerance = 0.;
@@ -106,7 +110,13 @@ namespace Fidus
       unsigned int linear_iterations = 0; ///< outer FGMRES, summed
       unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
       unsigned int expensive_solves  = 0;
-      double       rigidity_residual = 0.;
+      /// The rigidity residual in the measure the Uzawa loop stops on
+      /// (Settings::rigidity_per_particle): RigidityResidual::held or
+      /// RigidityResidual::particle.
+      double rigidity_residual = 0.;
+      /// RigidityResidual::particle of the last iteration, whatever the
+      /// measure.
+      double particle_rigidity_residual = 0.;
       /// Largest change of a particle's rigid velocity in the last Uzawa
       /// iteration, |dU|/(g a) or |d omega|/g with g the box's rms shear
       /// rate sqrt(2 <e(u):e(u)>); NaN after a single iteration.
@@ -313,9 +323,18 @@ namespace Fidus
       double released = 0.;
       /// The box's rms shear rate sqrt(2 int_box |e(u)|^2 / |box|).
       double shear_rate = 0.;
+      /// The largest over the particles of the rms strain rate in the
+      /// particle's held solid relative to the box's shear rate,
+      /// max_i sqrt(int_{P_i} |e(u)|^2 / |P_i|) / shear_rate: a measure
+      /// that does not depend on the box's size or the particle count.
+      double particle = 0.;
     };
     RigidityResidual
     rigidity_residual(const SolidIndicator<dim> &solid) const;
+    /// Write @p residual into @p stats: the measure the loop stops on,
+    /// the per-particle one and the released solid's.
+    void
+    record_residual(Statistics &stats, const RigidityResidual &residual) const;
     /// Largest change of a particle's rigid velocity between @p previous
     /// and @p current, scaled by the larger of @p shear_rate times its
     /// radius and @p forced_velocity (Statistics).
