@@ -1,10 +1,10 @@
 // The particle generator: dense configurations without overlap (checked by
 // brute force, with the minimum image across periodic faces) and inside the
 // region, for 2D bidisperse discs at area fraction 0.6 (x periodic) and 3D
-// spheres at volume fraction 0.5 (x and z periodic); the count or fraction
-// asked for is met to its definition; the same seed gives the same particles
-// bit for bit, another seed other ones; bad settings and a jammed target
-// throw ContactError.
+// spheres at volume fraction 0.5 (x and z periodic), each at four seeds;
+// the count or fraction asked for is met to its definition; the same seed
+// gives the same particles bit for bit, another seed other ones; bad
+// settings and a jammed target throw ContactError.
 
 #include "test_tools.h"
 
@@ -183,6 +183,28 @@ main()
                      std::abs(p.fraction - 0.5) <=
                        0.5 * measure(3, 1.) / region_measure(s));
   }
+
+  // Further seeds: each reaches its fraction without overlap, not only the
+  // seeds above.
+  for (const unsigned int seed : {21u, 22u, 23u})
+    {
+      GeneratorSettings s2 = settings_2d();
+      s2.seed              = seed;
+      const auto p2        = ParticleGenerator::generate(s2);
+      const auto name2 = "2D area fraction 0.6, seed " + std::to_string(seed);
+      check_configuration(name2, s2, p2);
+      TestTools::check(name2 + ": fraction met to half a large disc",
+                       std::abs(p2.fraction - 0.6) <=
+                         0.5 * measure(2, 1.4) / region_measure(s2));
+      GeneratorSettings s3 = settings_3d();
+      s3.seed              = seed;
+      const auto p3        = ParticleGenerator::generate(s3);
+      const auto name3 = "3D volume fraction 0.5, seed " + std::to_string(seed);
+      check_configuration(name3, s3, p3);
+      TestTools::check(name3 + ": fraction met to half a sphere",
+                       std::abs(p3.fraction - 0.5) <=
+                         0.5 * measure(3, 1.) / region_measure(s3));
+    }
 
   // A given number of particles, a minimum separation, a sub-box with
   // walls on every side, three radii.

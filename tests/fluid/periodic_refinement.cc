@@ -4,12 +4,18 @@
 // other side. Both need the solid indicator's periodic images within the
 // reach of the refinement queries (the halo); with halo 0 (only particles
 // that cross the face get images) the point in the gap is not refined,
-// which this test also checks so that it can fail. Run on 1 and 2 ranks:
-// the adaptive mesh has hanging nodes on the periodic faces.
+// which this test also checks so that it can fail. Run on 1, 2 and 3
+// ranks: the adaptive mesh has hanging nodes on the periodic faces, a known
+// source of constraints that differ between ranks, so each mesh's
+// hanging-node and periodicity constraints (those of StokesSolver, Q2-Q1)
+// are checked with AffineConstraints::is_consistent_in_parallel, also for a
+// particle that straddles the face.
 
 #include "../fidus_test.h"
 
 #include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <fidus/fluid/stokes_solver.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/mesh/mesh_refiner.h>
 #include <fidus/particles/solid_indicator.h>
@@ -33,12 +39,32 @@ namespace
     return Utilities::MPI::max(level, MPI_COMM_WORLD);
   }
 
+  /// Whether the hanging-node and periodicity constraints of the Stokes
+  /// DoFs on @p tria (x periodic, imposed velocity on y = 0 and y = 1) are
+  /// the same on every rank that sees a constrained DoF.
+  bool
+  constraints_consistent(parallel::distributed::Triangulation<2> &tria)
+  {
+    Fidus::StokesSolver<2> solver(tria, Fidus::StokesSolver<2>::Settings());
+    solver.setup_dofs({0}, {2, 3});
+    const auto &dof_handler = solver.get_dof_handler();
+    IndexSet    active;
+    DoFTools::extract_locally_active_dofs(dof_handler, active);
+    return solver.get_conforming_constraints().is_consistent_in_parallel(
+      Utilities::MPI::all_gather(MPI_COMM_WORLD,
+                                 dof_handler.locally_owned_dofs()),
+      active,
+      MPI_COMM_WORLD);
+  }
+
   /// Adapt a periodic (in x) unit box to @p positions, radius 0.1, with the
-  /// given image halo; return the levels at the points @p probes.
+  /// given image halo; return the levels at the points @p probes and, if
+  /// @p consistent is given, whether the constraints are consistent.
   std::vector<int>
   levels(const std::vector<std::array<double, 3>> &positions,
          const double                              halo,
-         const std::vector<Point<2>>              &probes)
+         const std::vector<Point<2>>              &probes,
+         bool                                     *consistent = nullptr)
   {
     parallel::distributed::Triangulation<2> tria(
       MPI_COMM_WORLD,
@@ -59,6 +85,8 @@ namespace
     std::vector<int> result;
     for (const auto &p : probes)
       result.push_back(level_at(tria, p));
+    if (consistent)
+      *consistent = constraints_consistent(tria);
     return result;
   }
 } // namespace
@@ -82,7 +110,13 @@ main(int argc, char **argv)
                                                          {{0.878, 0.51, 0.}}};
   const std::vector<Point<2>>              gap_points = {Point<2>(0.001, 0.505),
                                                          Point<2>(0.999, 0.505)};
-  const auto with_halo = levels(pair, halo, gap_points);
+  bool                                     consistent = false;
+  const auto with_halo = levels(pair, halo, gap_points, &consistent);
+  check_range("pair across the face: constraints consistent on all ranks "
+              "(1 = yes)",
+              consistent ? 1 : 0,
+              1,
+              1);
   check_range("pair across the face: gap at x = 0 on the finest level",
               with_halo[0],
               max_level,
@@ -106,5 +140,29 @@ main(int argc, char **argv)
               band[0],
               max_level,
               max_level);
+
+  // A particle that straddles the face (centre 0.02 from x = 0, radius
+  // 0.1): its surface crosses the face near y = 0.598, and the cells there
+  // are on the finest level on both sides, with hanging nodes on the face.
+  const std::vector<std::array<double, 3>> straddling = {{{0.02, 0.5, 0.}}};
+  const auto                               across     = levels(straddling,
+                             halo,
+                             {Point<2>(0.001, 0.5978), Point<2>(0.999, 0.5978)},
+                             &consistent);
+  check_range("straddling particle: surface cell at x = 0.001 on the finest "
+              "level",
+              across[0],
+              max_level,
+              max_level);
+  check_range("straddling particle: surface cell at x = 0.999 on the finest "
+              "level",
+              across[1],
+              max_level,
+              max_level);
+  check_range("straddling particle: constraints consistent on all ranks "
+              "(1 = yes)",
+              consistent ? 1 : 0,
+              1,
+              1);
   return exit_code();
 }
