@@ -4,7 +4,8 @@
 Usage: contrib/plot_rheology.py OUTPUT_DIR [--shear-rate G] [--png FILE]
            [--skip STRAIN]
 
-Panels: relative viscosity and its contact part; N1, N2 and the particle
+Panels: relative viscosity, its contact part and (when the sub-grid
+lubrication correction is on) its lubrication part; N1, N2 and the particle
 pressure, each divided by eta_f |G| (G the shear rate of the run, default 1;
 the viscosity is read from used_parameters.prm). Prints the means over the
 strain after --skip (default 0: all rows except step 0). Definitions:
@@ -59,6 +60,8 @@ def main():
     series = {
         "relative viscosity": [float(r["relative_viscosity"]) for r in rows],
         "contact part": [float(r["contact_relative_viscosity"]) for r in rows],
+        "lubrication part": [float(r.get("lubrication_relative_viscosity", 0) or 0)
+                             for r in rows],
         "N1 / (eta |G|)": [scale * float(r["normal_stress_difference_1"]) for r in rows],
         "N2 / (eta |G|)": [scale * float(r["normal_stress_difference_2"]) for r in rows],
         "particle pressure / (eta |G|)": [scale * float(r["particle_pressure"]) for r in rows],
@@ -79,6 +82,9 @@ def main():
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
     top.plot(strain, series["relative viscosity"], label="relative viscosity")
     top.plot(strain, series["contact part"], label="contact part")
+    # Runs without the sub-grid lubrication correction have a zero column.
+    if any(v != 0 for v in series["lubrication part"]):
+        top.plot(strain, series["lubrication part"], label="lubrication part")
     top.set_ylabel("eta_r")
     top.legend()
     for name in ("N1 / (eta |G|)", "N2 / (eta |G|)", "particle pressure / (eta |G|)"):
