@@ -131,6 +131,16 @@ base | sed 's/Radius = 0.05/Radius = 0/' > bad.prm
 if ! "$fidus" --validate bad.prm > /dev/null 2>&1; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: --validate bad"; fi
 
+# Every shipped scene is a valid parameter file (--validate reads it all,
+# generates or reads its particles and checks them, and writes nothing).
+for shipped in "$here"/../../prm/*.prm; do
+  if (cd "$work" && "$fidus" --validate "$shipped" > /dev/null 2> stderr.txt); then
+    passes=$((passes + 1))
+  else
+    failures=$((failures + 1)); echo "FAILED: --validate $(basename "$shipped")"; cat "$work/stderr.txt"
+  fi
+done
+
 # --print-parameters documents every fixed entry of interface.md.
 "$fidus" --print-parameters > params.txt
 ok=1
