@@ -131,6 +131,9 @@ namespace Fidus
       double assemble_seconds = 0.;
       double setup_seconds    = 0.; ///< AMG and Jacobi set-up
       double solve_seconds    = 0.;
+      /// Part of solve_seconds spent in the Uzawa loop's passes over the
+      /// solid (multiplier load, rigidity residual, rigid motions).
+      double solid_pass_seconds = 0.;
     };
 
     /// Error norms against an exact solution.
