@@ -67,7 +67,11 @@ for scene in $scenes; do
         if (match($0, /blocks [0-9.e+-]+/)) blocks = substr($0, RSTART + 7, RLENGTH - 7)
       }
       /Stokes: assembly/ {
-        split($0, w, " "); a = w[3]; s = w[7]; u = w[10]
+        # Named fields, not positions: the line also carries sub-times.
+        a = 0; s = 0; u = 0
+        if (match($0, /assembly [0-9.e+-]+/)) a = substr($0, RSTART + 9, RLENGTH - 9)
+        if (match($0, /set-up [0-9.e+-]+/)) s = substr($0, RSTART + 7, RLENGTH - 7)
+        if (match($0, /Uzawa\/FGMRES [0-9.e+-]+/)) u = substr($0, RSTART + 13, RLENGTH - 13)
         n = step++
         if (n > 0) {
           N++; A += a; S += s; D += diag; B += blocks; U += u; I += iters[n]
