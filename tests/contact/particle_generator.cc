@@ -85,6 +85,17 @@ namespace
     return ok;
   }
 
+  /// The target fraction of @p s is met to half the measure of its
+  /// largest particle: the count whose total measure is nearest the target.
+  bool
+  fraction_met(const GeneratorSettings &s, const GeneratedParticles &p)
+  {
+    const double largest =
+      *std::max_element(s.radii_values.begin(), s.radii_values.end());
+    return std::abs(p.fraction - s.target_fraction) <=
+           0.5 * measure(s.dimension, largest) / region_measure(s);
+  }
+
   /// Checks common to every generated configuration; @p name heads the
   /// lines.
   void
@@ -154,11 +165,8 @@ main()
     const GeneratorSettings  s = settings_2d();
     const GeneratedParticles p = ParticleGenerator::generate(s);
     check_configuration("2D bidisperse, area fraction 0.6, x periodic", s, p);
-    // The count whose total area is closest to the target: within half the
-    // area of the largest disc.
     TestTools::check("2D: area fraction 0.6 met to half a large disc",
-                     std::abs(p.fraction - 0.6) <=
-                       0.5 * measure(2, 1.4) / region_measure(s));
+                     fraction_met(s, p));
     const auto n_small = std::count(p.radii.begin(), p.radii.end(), 1.);
     const auto n_large = std::count(p.radii.begin(), p.radii.end(), 1.4);
     TestTools::check("2D: radii 1 and 1.4 only, numbers differ by at most 1",
@@ -180,31 +188,26 @@ main()
                         s,
                         p);
     TestTools::check("3D: volume fraction 0.5 met to half a sphere",
-                     std::abs(p.fraction - 0.5) <=
-                       0.5 * measure(3, 1.) / region_measure(s));
+                     fraction_met(s, p));
   }
 
   // Further seeds: each reaches its fraction without overlap, not only the
   // seeds above.
   for (const unsigned int seed : {21u, 22u, 23u})
-    {
-      GeneratorSettings s2 = settings_2d();
-      s2.seed              = seed;
-      const auto p2        = ParticleGenerator::generate(s2);
-      const auto name2 = "2D area fraction 0.6, seed " + std::to_string(seed);
-      check_configuration(name2, s2, p2);
-      TestTools::check(name2 + ": fraction met to half a large disc",
-                       std::abs(p2.fraction - 0.6) <=
-                         0.5 * measure(2, 1.4) / region_measure(s2));
-      GeneratorSettings s3 = settings_3d();
-      s3.seed              = seed;
-      const auto p3        = ParticleGenerator::generate(s3);
-      const auto name3 = "3D volume fraction 0.5, seed " + std::to_string(seed);
-      check_configuration(name3, s3, p3);
-      TestTools::check(name3 + ": fraction met to half a sphere",
-                       std::abs(p3.fraction - 0.5) <=
-                         0.5 * measure(3, 1.) / region_measure(s3));
-    }
+    for (const bool three_d : {false, true})
+      {
+        GeneratorSettings s    = three_d ? settings_3d() : settings_2d();
+        s.seed                 = seed;
+        const auto        p    = ParticleGenerator::generate(s);
+        const std::string name = (three_d ? "3D volume fraction 0.5, seed " :
+                                            "2D area fraction 0.6, seed ") +
+                                 std::to_string(seed);
+        check_configuration(name, s, p);
+        TestTools::check(name + (three_d ?
+                                   ": fraction met to half a sphere" :
+                                   ": fraction met to half a large disc"),
+                         fraction_met(s, p));
+      }
 
   // A given number of particles, a minimum separation, a sub-box with
   // walls on every side, three radii.
