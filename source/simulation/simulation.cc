@@ -255,7 +255,7 @@ namespace Fidus
             project_onto_admissible_set(dt);
             advance_particles(dt);
             predict_velocities();
-            measure_stress();
+            measure_stress(dt);
             write_output(dt);
             if (checkpoint_or_stop())
               break;
@@ -344,7 +344,7 @@ namespace Fidus
       field_output = std::make_unique<FieldOutput<dim>>(prm.output_directory);
 
     predict_velocities();
-    measure_stress();
+    measure_stress(0.);
     write_output(0.);
     if (exact)
       report_exact_solution_errors();

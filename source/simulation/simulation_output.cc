@@ -1,5 +1,6 @@
 #include "output_columns.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fidus/rheology/contact_stress.h>
 #include <fidus/rheology/lubrication_stress.h>
@@ -15,12 +16,35 @@ namespace Fidus
 {
   template <int dim>
   void
-  Simulation<dim>::measure_stress()
+  Simulation<dim>::measure_stress(const double dt)
   {
     TimerOutput::Scope scope(*timer, "stress");
-    const double       g = shear(state.time);
+    // A row pairs the fluid solved at this time with the contact and
+    // lubrication forces of the step that led here, which the shear rate
+    // before this time drove. Where the shear rate jumps at this time (a
+    // reversal 't < T ? 1 : -1'), the fluid was just solved with the new
+    // rate, and dividing the old contact stress by the new rate gave a row
+    // that belonged to neither side. Stokes flow is linear in the shear
+    // rate, so the fluid's stress under the rate before the jump is the
+    // solved one rescaled: the row then describes one instant, the end of
+    // the step just before the jump, and the next row is the first of the
+    // new rate. External forces add a part that does not scale, and a zero
+    // rate cannot be rescaled; those rows keep the rate at this time.
+    const double g_now = shear(state.time);
+    double       g     = g_now;
+    if (dt > 0. && g_now != 0. && prm.external_forces.empty())
+      {
+        const double g_before = shear(state.time - 1e-6 * dt);
+        if (std::abs(g_before - g_now) >
+            1e-3 * std::max(std::abs(g_before), std::abs(g_now)))
+          g = g_before;
+      }
     if (fictitious)
-      hydrodynamic = hydrodynamic_stress->compute(*solver, solid);
+      {
+        hydrodynamic = hydrodynamic_stress->compute(*solver, solid);
+        if (g != g_now)
+          hydrodynamic.scale(g / g_now);
+      }
     else
       {
         // Free-draining particles carry no stress of their own: the
@@ -223,9 +247,9 @@ namespace Fidus
 
 
   template void
-  Simulation<2>::measure_stress();
+  Simulation<2>::measure_stress(double);
   template void
-  Simulation<3>::measure_stress();
+  Simulation<3>::measure_stress(double);
   template void
   Simulation<2>::write_output(double);
   template void

@@ -63,6 +63,23 @@ namespace Fidus
       Tensor<2, 3> wall;
       /// Stresslet S_a of every particle (all ranks hold all of them).
       std::vector<Tensor3> stresslets;
+
+      /**
+       * Multiply every field that is linear in the boundary data by @p c:
+       * the same configuration under a shear rate c times the solved one
+       * (Stokes flow without external forces is linear in the shear rate).
+       */
+      void
+      scale(const double c)
+      {
+        total *= c;
+        mean_strain_rate *= c;
+        fluid_pressure *= c;
+        particle *= c;
+        wall *= c;
+        for (Tensor3 &s : stresslets)
+          s *= c;
+      }
     };
 
     /**

@@ -161,9 +161,11 @@ namespace Fidus
     void
     predict_velocities();
     /// The suspension's stress: hydrodynamic from the fluid solve, contact
-    /// from the projection that led to this step (doc/rheology.md).
+    /// and lubrication from the step of length @p dt that led to it (0 at
+    /// the start); at a jump of the shear rate, the row describes the
+    /// instant just before the jump (doc/rheology.md).
     void
-    measure_stress();
+    measure_stress(double dt);
     /// CSV rows, VTU/VTP output and the progress line of this step.
     void
     write_output(double dt);

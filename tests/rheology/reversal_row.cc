@@ -1,0 +1,149 @@
+// The statistics row at a shear reversal. A row pairs the fluid solved at
+// its time with the contact and lubrication forces of the step that led to
+// it; when the shear rate jumps at that time, the row must describe one
+// instant (the end of the last forward step), not the new fluid stress
+// next to the old contact stress divided by the new rate.
+//
+// Two runs of the same 2D pair in contact (inelastic, lubrication on,
+// released shared cells, the multiplier started from zero each solve) to
+// t = 1 in steps of 1/8, exact in binary: A with shear rate 1, B with
+// 't < 1 ? 1 : -1'. Their steps are identical; only B's last fluid solve
+// sees the reversed rate. Checks:
+// - B's last fluid solve is A's with the sign flipped (the reversal took
+//   place): the velocities are opposite;
+// - B's last row equals A's to rounding in every stress column and in the
+//   particles' stresslets (Stokes flow is linear in the shear rate, so the
+//   rescaled fluid stress is exactly A's);
+// - A's row carries a contact and a lubrication part, so the check has
+//   something to compare.
+
+#include "../fidus_test.h"
+
+#include <cmath>
+#include <fidus/core/parameters.h>
+#include <fidus/simulation/simulation.h>
+
+using namespace FidusTest;
+
+namespace
+{
+  Fidus::RunSummary
+  run(const std::string &shear, const std::string &dir)
+  {
+    std::ostringstream prm;
+    prm << "set Dimension = 2\nset Output directory = " << dir << "\n"
+        << "subsection Domain\n  set Boundary condition = sliding walls\n"
+        << "  set Shear rate = " << shear << "\nend\n"
+        << "subsection Fluid\n  set Shared cells = fluid\n"
+        << "  set Lubrication correction = true\n"
+        << "  set Reuse multiplier = false\nend\n"
+        << "subsection Particles\n  set Radius = 0.05\n"
+        << "  set Positions = 0.451, 0.51; 0.549, 0.49\nend\n"
+        << "subsection Contact\n  set Model = inelastic\nend\n"
+        << "subsection Time stepping\n  set End time = 1\n"
+        << "  set Time step = 0.125\nend\n"
+        << "subsection Mesh refinement\n  set Maximum level = 6\nend\n"
+        << "subsection Output\n  set Verbosity = quiet\nend\n";
+    return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+  }
+
+  double
+  relative_difference(const double b, const double a, const double scale)
+  {
+    return std::abs(b - a) / scale;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  redirect_warnings();
+
+  const auto A = run("1", "steady");
+  const auto B = run("t < 1 ? 1 : -1", "reversed");
+
+  check_range("A: contact part of eta_r at t = 1",
+              A.stress.contact_relative_viscosity,
+              1e-5,
+              10.);
+  check_range("A: lubrication part of eta_r at t = 1",
+              A.stress.lubrication_relative_viscosity,
+              1e-4,
+              10.);
+
+  double u_scale = 0., u_sum = 0.;
+  for (unsigned int i = 0; i < 2; ++i)
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        u_scale = std::max(u_scale, std::abs(A.velocities[i][d]));
+        u_sum =
+          std::max(u_sum, std::abs(A.velocities[i][d] + B.velocities[i][d]));
+      }
+  check_range("B's last solve is A's reversed: max |U_B + U_A| / max |U_A|",
+              u_sum / u_scale,
+              0.,
+              1e-9);
+
+  const double eta = A.stress.relative_viscosity;
+  check_range("reversal row: |eta_r(B) - eta_r(A)| / eta_r(A)",
+              relative_difference(B.stress.relative_viscosity, eta, eta),
+              0.,
+              1e-9);
+  check_range("reversal row: contact part, difference / eta_r(A)",
+              relative_difference(B.stress.contact_relative_viscosity,
+                                  A.stress.contact_relative_viscosity,
+                                  eta),
+              0.,
+              1e-9);
+  check_range("reversal row: lubrication part, difference / eta_r(A)",
+              relative_difference(B.stress.lubrication_relative_viscosity,
+                                  A.stress.lubrication_relative_viscosity,
+                                  eta),
+              0.,
+              1e-9);
+  const double sigma = std::abs(A.stress.shear_stress);
+  check_range("reversal row: shear stress, difference / sigma_xy(A)",
+              relative_difference(B.stress.shear_stress,
+                                  A.stress.shear_stress,
+                                  sigma),
+              0.,
+              1e-9);
+  check_range("reversal row: N1, difference / sigma_xy(A)",
+              relative_difference(B.stress.normal_stress_difference_1,
+                                  A.stress.normal_stress_difference_1,
+                                  sigma),
+              0.,
+              1e-9);
+  check_range("reversal row: N2, difference / sigma_xy(A)",
+              relative_difference(B.stress.normal_stress_difference_2,
+                                  A.stress.normal_stress_difference_2,
+                                  sigma),
+              0.,
+              1e-9);
+  check_range("reversal row: particle pressure, difference / sigma_xy(A)",
+              relative_difference(B.stress.particle_pressure,
+                                  A.stress.particle_pressure,
+                                  sigma),
+              0.,
+              1e-9);
+  check_range("reversal row: wall shear stress, difference / sigma_xy(A)",
+              relative_difference(B.stress.wall_shear_stress,
+                                  A.stress.wall_shear_stress,
+                                  sigma),
+              0.,
+              1e-9);
+  double s_scale = 0., s_diff = 0.;
+  for (unsigned int i = 0; i < 2; ++i)
+    for (unsigned int c = 0; c < 6; ++c)
+      {
+        s_scale = std::max(s_scale, std::abs(A.stresslets[i][c]));
+        s_diff =
+          std::max(s_diff, std::abs(B.stresslets[i][c] - A.stresslets[i][c]));
+      }
+  check_range("reversal row: stresslets, max difference / max |S(A)|",
+              s_diff / s_scale,
+              0.,
+              1e-9);
+  return exit_code();
+}
