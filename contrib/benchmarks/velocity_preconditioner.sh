@@ -12,7 +12,8 @@
 #   spheres3d      24 spheres at volume fraction 0.25 between sliding walls,
 #                  level 4, one step (as contrib/benchmarks/suspension_3d.sh)
 #   pair3d L       prm/two_particles_3d.prm at maximum level L, first step
-# Prints one row per scene and preconditioner: cells, Uzawa iterations, FGMRES
+# Prints one row per scene and preconditioner: cells, DoFs (velocity and
+# pressure, of the last solve), Uzawa iterations, FGMRES
 # iterations (total and per solve), assembly, set-up and solve seconds of
 # the fluid predictor summed over the run, the run's wall seconds and its
 # peak memory (resident set, MB).
@@ -194,6 +195,7 @@ import re, sys
 label, pc, rb, mf, avg, wall = sys.argv[1:7]
 text = sys.stdin.read()
 cells = re.findall(r"cells (\d+)", text)
+dofs = re.findall(r"DoFs (\d+)", text)
 # Per solve (verbose lines): the last "Uzawa k: ... FGMRES total N" before
 # each "Stokes: assembly" line gives its Uzawa iterations and FGMRES total.
 uz, fg, last = [], [], None
@@ -207,8 +209,9 @@ assembly = sum(float(s) for s in re.findall(r"Stokes: assembly ([0-9.e-]+) s", t
 setup = sum(float(s) for s in re.findall(r"preconditioner set-up ([0-9.e-]+) s", text))
 peak = re.findall(r"peak-kB (\d+)", text)
 solve = sum(float(s) for s in re.findall(r"Uzawa/FGMRES ([0-9.e-]+) s", text))
-print("| %-18s | %s | %-5s | %-5s | %-8s | %7s | %5d | %7d | %6.1f | %6.2f | %7.2f | %8.2f | %7.1f | %6.0f |" % (
-    label, pc, rb, mf, avg, cells[-1] if cells else "?", sum(uz), sum(fg),
+print("| %-18s | %s | %-5s | %-5s | %-8s | %7s | %8s | %5d | %7d | %6.1f | %6.2f | %7.2f | %8.2f | %7.1f | %6.0f |" % (
+    label, pc, rb, mf, avg, cells[-1] if cells else "?",
+    dofs[-1] if dofs else "?", sum(uz), sum(fg),
     sum(fg) / max(sum(uz), 1), assembly, setup, solve, float(wall),
     int(peak[-1]) / 1024 if peak else float("nan")))
 ' "$label" "$pc" "$rb" "$mf" "$avg" "$wall"
@@ -217,8 +220,8 @@ print("| %-18s | %s | %-5s | %-5s | %-8s | %7s | %5d | %7d | %6.1f | %6.2f | %7.
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=("inclusion2d 8" "inclusion3d 3" "inclusion3d 4" "inclusion3d 5" "pair3d 6" dense2d paper2d)
 IFS=';' read -r -a variants <<< "${VARIANTS:-AMG false true;AMG true true;GMG false true;GMG true false;GMG true true}"
-echo "| scene              | PC  | rigid | m-free | averaging | cells   | Uzawa | FGMRES  | /solve | assembly s | set-up s | solve s  | wall s  | peak MB |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| scene              | PC  | rigid | m-free | averaging | cells   | DoFs     | Uzawa | FGMRES  | /solve | assembly s | set-up s | solve s  | wall s  | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   for variant in "${variants[@]}"; do
     read -r pc rb mf avg blocks <<< "$variant"

@@ -488,7 +488,8 @@ namespace Fidus
                 << " s), preconditioner set-up " << stats.setup_seconds
                 << " s, Uzawa/FGMRES " << stats.solve_seconds
                 << " s (of which passes over the solid "
-                << stats.solid_pass_seconds << " s)" << std::endl;
+                << stats.solid_pass_seconds << " s), DoFs " << n_dofs()
+                << std::endl;
     return stats;
   }
 
