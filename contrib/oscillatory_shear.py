@@ -281,6 +281,10 @@ def main():
                  for g in amplitudes],
                 "s-", label=model)
     ax.set_xscale("log")
+    # The amplitudes themselves as ticks: log-axis minor labels overlap.
+    ax.set_xticks(amplitudes)
+    ax.set_xticklabels([f"{g:g}" for g in amplitudes])
+    ax.minorticks_off()
     ax.set_xlabel("strain amplitude $\\gamma_0$")
     ax.set_ylabel("fraction not returned (last 3 cycles)")
     ax.set_ylim(-0.02, 1.02)
