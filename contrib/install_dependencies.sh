@@ -2,8 +2,10 @@
 # Installs what fidus needs on a fresh Debian (bookworm) machine, and nothing
 # when it is all there already. Used by contrib/run.sh and contrib/test.sh.
 set -euo pipefail
+# bc and time: the benchmark scripts' arithmetic and peak-memory readings.
 packages=(libdeal.ii-dev numdiff libeigen3-dev libboost-dev ccache
-          python3-matplotlib clang-format cmake g++ make openmpi-bin procps)
+          python3-matplotlib clang-format cmake g++ make openmpi-bin procps
+          bc time)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
