@@ -510,6 +510,61 @@ namespace Fidus
                       next,
                       lubrication_stats.residual);
       }
+
+    // The positions move explicitly (X += dt u): a gap that the corrected
+    // velocities take past zero within the step stays crossed, and without
+    // a contact model nothing stops the pair there (doc/lubrication.md,
+    // "Stability"). Say so, rather than let the pair overlap silently. A
+    // contact model holds the gap itself.
+    if (prm.contact_model != ContactModel::none)
+      return;
+    for (const Contact::LubricationBond &b : lubrication->bonds())
+      {
+        const bool pair = b.j != Contact::LubricationBond::no_particle;
+        // The gap at the end of the step, from the same Euler update as
+        // the positions: the bond's separation (minimum image) plus the
+        // relative displacement for a pair, the normal motion for a wall.
+        double closing = 0., after = 0.;
+        if (pair)
+          {
+            double length2 = 0.;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                const double du = u_lubricated[b.j][d] - u_lubricated[b.i][d];
+                closing -= b.n[d] * du;
+                length2 += std::pow(b.n[d] * b.length + dt * du, 2);
+              }
+            after = std::sqrt(length2) - b.a_i - b.a_j;
+          }
+        else
+          {
+            for (unsigned int d = 0; d < 3; ++d)
+              closing += b.n[d] * u_lubricated[b.i][d];
+            after = b.length - dt * closing - b.a_i;
+          }
+        if (b.gap > 0. && after < 0.)
+          {
+            std::ostringstream m;
+            m << "the lubrication correction cannot hold the gap of particle "
+              << b.i
+              << (pair ? " and particle " + std::to_string(b.j) :
+                         std::string(" and a wall"))
+              << " at step " << next << ": the step of " << dt
+              << " takes it from " << b.gap << " to " << after
+              << " (explicit positions; Contact/Model = none lets the "
+              << "particles overlap)";
+            if (closing > 0.)
+              m << "; a time step below " << b.gap / closing
+                << " (gap / closing speed) or a contact model keeps it open";
+            else
+              m << "; a smaller time step or a contact model keeps it open";
+            warnings.warn("lubrication gap closed in one step",
+                          m.str(),
+                          next,
+                          -after / b.gap);
+            break;
+          }
+      }
   }
 
 
