@@ -302,6 +302,33 @@ namespace Fidus::Contact
 
 
 
+  double
+  LubricationCorrection::approach_speed(const LubricationBond   &b,
+                                        const std::vector<Vec3> &u)
+  {
+    double s = 0.;
+    for (unsigned int d = 0; d < 3; ++d)
+      s += b.n[d] * (u[b.i][d] - (is_wall(b) ? 0. : u[b.j][d]));
+    return s;
+  }
+
+
+
+  double
+  LubricationCorrection::length_after_step(const LubricationBond   &b,
+                                           const std::vector<Vec3> &u,
+                                           const double             dt)
+  {
+    if (is_wall(b))
+      return b.length - dt * approach_speed(b, u);
+    Vec3 r_new{{0., 0., 0.}};
+    for (unsigned int d = 0; d < 3; ++d)
+      r_new[d] = b.length * b.n[d] + dt * (u[b.j][d] - u[b.i][d]);
+    return std::sqrt(dot(r_new, r_new));
+  }
+
+
+
   LubricationStatistics
   LubricationCorrection::correct(const std::vector<Vec3>   &positions,
                                  const std::vector<double> &radii,
@@ -556,16 +583,9 @@ namespace Fidus::Contact
           {
             if (b.j == LubricationBond::no_particle)
               continue; // a particle sliding along a plane keeps its gap
-            Vec3   rel{{0., 0., 0.}}, r_new{{0., 0., 0.}};
-            double wn = 0.;
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                rel[d] = u[b.j][d] - u[b.i][d];
-                wn += b.n[d] * rel[d];
-                r_new[d] = b.length * b.n[d] + dt * rel[d];
-              }
+            const double wn = -approach_speed(b, u);
             const double opening =
-              std::sqrt(dot(r_new, r_new)) - b.length - dt * wn;
+              length_after_step(b, u, dt) - b.length - dt * wn;
             const double zi = zeta[b.i], zj = zeta[b.j];
             for (unsigned int d = 0; d < dim; ++d)
               {

@@ -518,30 +518,16 @@ namespace Fidus
     // contact model holds the gap itself.
     if (prm.contact_model != ContactModel::none)
       return;
+    using Contact::LubricationCorrection;
     for (const Contact::LubricationBond &b : lubrication->bonds())
       {
         const bool pair = b.j != Contact::LubricationBond::no_particle;
-        // The gap at the end of the step, from the same Euler update as
-        // the positions: the bond's separation (minimum image) plus the
-        // relative displacement for a pair, the normal motion for a wall.
-        double closing = 0., after = 0.;
-        if (pair)
-          {
-            double length2 = 0.;
-            for (unsigned int d = 0; d < 3; ++d)
-              {
-                const double du = u_lubricated[b.j][d] - u_lubricated[b.i][d];
-                closing -= b.n[d] * du;
-                length2 += std::pow(b.n[d] * b.length + dt * du, 2);
-              }
-            after = std::sqrt(length2) - b.a_i - b.a_j;
-          }
-        else
-          {
-            for (unsigned int d = 0; d < 3; ++d)
-              closing += b.n[d] * u_lubricated[b.i][d];
-            after = b.length - dt * closing - b.a_i;
-          }
+        // A wall bond has a_j = 0.
+        const double after =
+          LubricationCorrection::length_after_step(b, u_lubricated, dt) -
+          b.a_i - b.a_j;
+        const double closing =
+          LubricationCorrection::approach_speed(b, u_lubricated);
         if (b.gap > 0. && after < 0.)
           {
             std::ostringstream m;

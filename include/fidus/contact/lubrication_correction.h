@@ -209,6 +209,24 @@ namespace Fidus::Contact
                      const std::array<double, 12> &v);
 
     /**
+     * The normal speed at which the translational velocities @p u (of all
+     * particles) close the gap of bond @p b: n.(u_i - u_j), or n.u_i for a
+     * wall, which does not move normally.
+     */
+    static double
+    approach_speed(const LubricationBond &b, const std::vector<Vec3> &u);
+
+    /**
+     * The length of bond @p b (centre distance, or a centre's distance from
+     * the wall) after the explicit Euler step X += dt u that moves the
+     * particles: |l n + dt (u_j - u_i)| for a pair, l - dt n.u_i for a wall.
+     */
+    static double
+    length_after_step(const LubricationBond   &b,
+                      const std::vector<Vec3> &u,
+                      double                   dt);
+
+    /**
      * Correct the predicted translational and angular velocities @p u_star
      * and @p w_star (angular velocity about z in 2D, in component 2): @p u
      * and @p w receive the corrected ones. Without tangential terms w =
