@@ -22,6 +22,9 @@
 #include <cmath>
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/simulation.h>
+#include <string>
+#include <tuple>
+#include <vector>
 
 using namespace FidusTest;
 
@@ -85,54 +88,41 @@ main(int argc, char **argv)
               0.,
               1e-9);
 
-  const double eta = A.stress.relative_viscosity;
-  check_range("reversal row: |eta_r(B) - eta_r(A)| / eta_r(A)",
-              relative_difference(B.stress.relative_viscosity, eta, eta),
-              0.,
-              1e-9);
-  check_range("reversal row: contact part, difference / eta_r(A)",
-              relative_difference(B.stress.contact_relative_viscosity,
-                                  A.stress.contact_relative_viscosity,
-                                  eta),
-              0.,
-              1e-9);
-  check_range("reversal row: lubrication part, difference / eta_r(A)",
-              relative_difference(B.stress.lubrication_relative_viscosity,
-                                  A.stress.lubrication_relative_viscosity,
-                                  eta),
-              0.,
-              1e-9);
+  // Each stress column of B's last row against A's, relative to eta_r(A)
+  // for the parts of eta_r and to A's shear stress for the stresses.
+  const double eta   = A.stress.relative_viscosity;
   const double sigma = std::abs(A.stress.shear_stress);
-  check_range("reversal row: shear stress, difference / sigma_xy(A)",
-              relative_difference(B.stress.shear_stress,
-                                  A.stress.shear_stress,
-                                  sigma),
-              0.,
-              1e-9);
-  check_range("reversal row: N1, difference / sigma_xy(A)",
-              relative_difference(B.stress.normal_stress_difference_1,
-                                  A.stress.normal_stress_difference_1,
-                                  sigma),
-              0.,
-              1e-9);
-  check_range("reversal row: N2, difference / sigma_xy(A)",
-              relative_difference(B.stress.normal_stress_difference_2,
-                                  A.stress.normal_stress_difference_2,
-                                  sigma),
-              0.,
-              1e-9);
-  check_range("reversal row: particle pressure, difference / sigma_xy(A)",
-              relative_difference(B.stress.particle_pressure,
-                                  A.stress.particle_pressure,
-                                  sigma),
-              0.,
-              1e-9);
-  check_range("reversal row: wall shear stress, difference / sigma_xy(A)",
-              relative_difference(B.stress.wall_shear_stress,
-                                  A.stress.wall_shear_stress,
-                                  sigma),
-              0.,
-              1e-9);
+  const std::vector<
+    std::tuple<std::string, double Fidus::SuspensionStress::*, double>>
+    columns = {{"|eta_r(B) - eta_r(A)| / eta_r(A)",
+                &Fidus::SuspensionStress::relative_viscosity,
+                eta},
+               {"contact part, difference / eta_r(A)",
+                &Fidus::SuspensionStress::contact_relative_viscosity,
+                eta},
+               {"lubrication part, difference / eta_r(A)",
+                &Fidus::SuspensionStress::lubrication_relative_viscosity,
+                eta},
+               {"shear stress, difference / sigma_xy(A)",
+                &Fidus::SuspensionStress::shear_stress,
+                sigma},
+               {"N1, difference / sigma_xy(A)",
+                &Fidus::SuspensionStress::normal_stress_difference_1,
+                sigma},
+               {"N2, difference / sigma_xy(A)",
+                &Fidus::SuspensionStress::normal_stress_difference_2,
+                sigma},
+               {"particle pressure, difference / sigma_xy(A)",
+                &Fidus::SuspensionStress::particle_pressure,
+                sigma},
+               {"wall shear stress, difference / sigma_xy(A)",
+                &Fidus::SuspensionStress::wall_shear_stress,
+                sigma}};
+  for (const auto &[label, column, scale] : columns)
+    check_range("reversal row: " + label,
+                relative_difference(B.stress.*column, A.stress.*column, scale),
+                0.,
+                1e-9);
   double s_scale = 0., s_diff = 0.;
   for (unsigned int i = 0; i < 2; ++i)
     for (unsigned int c = 0; c < 6; ++c)
