@@ -189,6 +189,14 @@ namespace Fidus::Contact
 
 
 
+  void
+  LubricationCorrection::set_external_forces(const std::vector<Vec3> &forces)
+  {
+    external_force = forces;
+  }
+
+
+
   double
   LubricationCorrection::squeeze_resistance(const unsigned int dimension,
                                             const double       viscosity,
@@ -269,11 +277,12 @@ namespace Fidus::Contact
   void
   LubricationCorrection::apply(const std::vector<double> &zeta,
                                const std::vector<double> &zeta_rot,
-                               const bool                 resolved,
+                               const Resistance           resistance,
                                const std::vector<double> &x,
                                std::vector<double>       &y) const
   {
-    const std::size_t n = zeta.size();
+    const bool        resolved = resistance != Resistance::true_gap;
+    const std::size_t n        = zeta.size();
     y.assign(6 * n, 0.);
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
@@ -283,11 +292,12 @@ namespace Fidus::Contact
         }
     for (const LubricationBond &b : bond)
       {
-        const Local v = gather(b, x);
-        scatter_add(b,
-                    normal_loads(b, resolved ? b.r_resolved : b.r_true, v),
-                    -1.,
-                    y);
+        const Local  v = gather(b, x);
+        const double r =
+          resistance == Resistance::true_gap ? b.r_true :
+          resistance == Resistance::resolved ? b.r_resolved :
+                                               b.r_resolved_force;
+        scatter_add(b, normal_loads(b, r, v), -1., y);
         if (settings.tangential)
           scatter_add(b,
                       loads_of_sliding(b,
@@ -298,6 +308,86 @@ namespace Fidus::Contact
                       -1.,
                       y);
       }
+  }
+
+
+
+  void
+  LubricationCorrection::solve(const std::vector<double> &zeta,
+                               const std::vector<double> &zeta_rot,
+                               const Resistance           resistance,
+                               const std::vector<double> &rhs,
+                               std::vector<double>       &x,
+                               LubricationStatistics     &stat) const
+  {
+    const std::size_t   n = zeta.size();
+    std::vector<double> ax, r(6 * n), z(6 * n), p(6 * n), diag(6 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          diag[6 * i + d]     = zeta[i];
+          diag[6 * i + 3 + d] = zeta_rot[i];
+        }
+    // The exact diagonal of the bond terms, one local unit vector at a time.
+    for (const LubricationBond &b : bond)
+      {
+        const double R =
+          resistance == Resistance::true_gap ? b.r_true :
+          resistance == Resistance::resolved ? b.r_resolved :
+                                               b.r_resolved_force;
+        const double c =
+          resistance == Resistance::true_gap ? b.t_true : b.t_resolved;
+        for (unsigned int k = 0; k < (is_wall(b) ? 6u : 12u); ++k)
+          {
+            Local e{};
+            e[k]          = 1.;
+            const Local f = normal_loads(b, R, e);
+            double      t = 0.;
+            if (settings.tangential)
+              t = loads_of_sliding(b, c, settings.dimension, e, false)[k];
+            diag[6 * (k < 6 ? b.i : b.j) + k % 6] -= f[k] + t;
+          }
+      }
+    apply(zeta, zeta_rot, resistance, x, ax);
+    double rhs_norm2 = 0., rz = 0., r_norm2 = 0.;
+    for (std::size_t k = 0; k < 6 * n; ++k)
+      {
+        r[k] = rhs[k] - ax[k];
+        z[k] = r[k] / diag[k];
+        p[k] = z[k];
+        rhs_norm2 += rhs[k] * rhs[k];
+        rz += r[k] * z[k];
+        r_norm2 += r[k] * r[k];
+      }
+    const double goal2 = settings.tolerance * settings.tolerance * rhs_norm2;
+    unsigned int it    = 0;
+    while (r_norm2 > goal2 && it < settings.max_iterations)
+      {
+        apply(zeta, zeta_rot, resistance, p, ax);
+        double pap = 0.;
+        for (std::size_t k = 0; k < 6 * n; ++k)
+          pap += p[k] * ax[k];
+        const double alpha  = rz / pap;
+        double       rz_new = 0.;
+        r_norm2             = 0.;
+        for (std::size_t k = 0; k < 6 * n; ++k)
+          {
+            x[k] += alpha * p[k];
+            r[k] -= alpha * ax[k];
+            z[k] = r[k] / diag[k];
+            rz_new += r[k] * z[k];
+            r_norm2 += r[k] * r[k];
+          }
+        const double beta = rz_new / rz;
+        rz                = rz_new;
+        for (std::size_t k = 0; k < 6 * n; ++k)
+          p[k] = z[k] + beta * p[k];
+        ++it;
+      }
+    stat.iterations = it;
+    stat.residual =
+      rhs_norm2 > 0. ? std::sqrt(r_norm2 / rhs_norm2) : std::sqrt(r_norm2);
+    stat.converged = r_norm2 <= goal2;
   }
 
 
@@ -370,23 +460,34 @@ namespace Fidus::Contact
     u                = u_star;
     w                = w_star;
     const double h_c = settings.range;
+    const double h_f =
+      settings.flow_range >= 0. ? settings.flow_range : settings.range;
     const double h_w =
       settings.wall_range >= 0. ? settings.wall_range : settings.range;
 
-    // A bond is kept only where the true resistance exceeds the resolved
-    // one, i.e. where the mesh misses some of the squeeze.
+    // A bond is kept only where the true resistance exceeds a resolved
+    // one, i.e. where the mesh misses some of the squeeze. A wall gets the
+    // same resolved resistance in both responses.
     const auto make_bond = [&](LubricationBond &b,
                                const double     a_small,
-                               const double     range) {
+                               const double     range,
+                               const double     flow_range) {
       const double floor = settings.roughness * a_small;
       if (b.gap < floor)
         ++stat.n_rough;
-      const double gap = std::max(b.gap, floor);
+      const double gap      = std::max(b.gap, floor);
+      const auto   resolved = [&](const double r) {
+        return settings.nothing_resolved ?
+                   0. :
+                   squeeze_resistance(dim,
+                                    settings.viscosity,
+                                    b.a_i,
+                                    b.a_j,
+                                    std::max(gap, r));
+      };
       b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
-      b.r_resolved =
-        settings.nothing_resolved ?
-          0. :
-          squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, range);
+      b.r_resolved       = resolved(flow_range);
+      b.r_resolved_force = resolved(range);
       if (settings.tangential)
         {
           b.t_true     = tangential_resistance(dim,
@@ -401,14 +502,15 @@ namespace Fidus::Contact
                                                  settings.viscosity,
                                                  b.a_i,
                                                  b.a_j,
-                                                 range,
+                                                 std::max(gap, range),
                                                  range);
         }
-      return b.r_true > b.r_resolved;
+      return b.r_true > std::min(b.r_resolved, b.r_resolved_force);
     };
 
+    const double                  h_pairs = std::max(h_c, h_f);
     std::vector<PairSearch::Pair> pairs;
-    search.find_pairs(positions, radii, h_c, pairs);
+    search.find_pairs(positions, radii, h_pairs, pairs);
     for (const auto &[i, j] : pairs)
       {
         LubricationBond b;
@@ -419,11 +521,11 @@ namespace Fidus::Contact
         const Vec3 r = search.separation(positions[i], positions[j]);
         b.length     = std::sqrt(dot(r, r));
         b.gap        = b.length - radii[i] - radii[j];
-        if (b.gap >= h_c || !(b.length > 0.))
+        if (b.gap >= h_pairs || !(b.length > 0.))
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j]), h_c))
+        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -444,7 +546,7 @@ namespace Fidus::Contact
           b.n[wall.axis]             = -wall.side;
           b.wall_velocity            = wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
-          if (make_bond(b, radii[i], h_w))
+          if (make_bond(b, radii[i], h_w, h_w))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;
@@ -454,38 +556,23 @@ namespace Fidus::Contact
       return stat;
 
     // Right-hand side b = A_resolved u* + (the forcing of moving walls,
-    // true minus resolved), solved for A_true u = b by Jacobi-preconditioned
-    // conjugate gradients (A_true is the drag plus a sum of positive
-    // semi-definite bond terms: symmetric positive definite).
-    std::vector<double> zeta(n), zeta_rot(n), x(6 * n), rhs, ax, r(6 * n),
-      z(6 * n), p(6 * n), diag(6 * n);
+    // true minus resolved) + (the external forces' part, below), solved for
+    // A_true u = b by Jacobi-preconditioned conjugate gradients (A_true is
+    // the drag plus a sum of positive semi-definite bond terms: symmetric
+    // positive definite).
+    std::vector<double> zeta(n), zeta_rot(n), x(6 * n), rhs;
     for (std::size_t i = 0; i < n; ++i)
       {
         zeta[i]     = drag(radii[i]);
         zeta_rot[i] = rotational_drag(radii[i]);
         for (unsigned int d = 0; d < 3; ++d)
           {
-            x[6 * i + d]        = u_star[i][d];
-            x[6 * i + 3 + d]    = w_star[i][d];
-            diag[6 * i + d]     = zeta[i];
-            diag[6 * i + 3 + d] = zeta_rot[i];
+            x[6 * i + d]     = u_star[i][d];
+            x[6 * i + 3 + d] = w_star[i][d];
           }
       }
-    // The exact diagonal of the bond terms, one local unit vector at a time.
-    for (const LubricationBond &b : bond)
-      for (unsigned int k = 0; k < (is_wall(b) ? 6u : 12u); ++k)
-        {
-          Local e{};
-          e[k]          = 1.;
-          const Local f = normal_loads(b, b.r_true, e);
-          double      t = 0.;
-          if (settings.tangential)
-            t = loads_of_sliding(b, b.t_true, dim, e, false)[k];
-          diag[6 * (k < 6 ? b.i : b.j) + k % 6] -= f[k] + t;
-        }
     const std::vector<double> x_star = x;
-    apply(zeta, zeta_rot, true, x, rhs);
-    apply(zeta, zeta_rot, false, x, ax);
+    apply(zeta, zeta_rot, Resistance::resolved, x, rhs);
     const auto wall_forcing = [&](const LubricationBond &b, const bool res) {
       return loads_of_sliding(b,
                               res ? b.t_resolved : b.t_true,
@@ -500,45 +587,43 @@ namespace Fidus::Contact
             scatter_add(b, wall_forcing(b, false), 1., rhs);
             scatter_add(b, wall_forcing(b, true), -1., rhs);
           }
-    double rhs_norm2 = 0., rz = 0., r_norm2 = 0.;
-    for (std::size_t k = 0; k < 6 * n; ++k)
+
+    // The part of u* that the external forces drive, as the mesh is
+    // modelled to move under them (resolved resistance R(h_c)), and the
+    // difference between the two resolved resistances on it.
+    std::vector<double> x_force;
+    bool                two_responses = false;
+    for (const LubricationBond &b : bond)
+      two_responses |= b.r_resolved_force != b.r_resolved;
+    if (two_responses && external_force.size() == n)
       {
-        r[k] = rhs[k] - ax[k];
-        z[k] = r[k] / diag[k];
-        p[k] = z[k];
-        rhs_norm2 += rhs[k] * rhs[k];
-        rz += r[k] * z[k];
-        r_norm2 += r[k] * r[k];
+        std::vector<double> f(6 * n, 0.);
+        for (std::size_t i = 0; i < n; ++i)
+          for (unsigned int d = 0; d < dim; ++d)
+            f[6 * i + d] = external_force[i][d];
+        x_force.assign(6 * n, 0.);
+        for (std::size_t i = 0; i < n; ++i)
+          for (unsigned int d = 0; d < 3; ++d)
+            x_force[6 * i + d] = f[6 * i + d] / zeta[i];
+        LubricationStatistics force_stat;
+        solve(zeta,
+              zeta_rot,
+              Resistance::resolved_force,
+              f,
+              x_force,
+              force_stat);
+        stat.converged &= force_stat.converged;
+        for (const LubricationBond &b : bond)
+          scatter_add(b,
+                      normal_loads(b,
+                                   b.r_resolved_force - b.r_resolved,
+                                   gather(b, x_force)),
+                      -1.,
+                      rhs);
       }
-    const double goal2 = settings.tolerance * settings.tolerance * rhs_norm2;
-    unsigned int it    = 0;
-    while (r_norm2 > goal2 && it < settings.max_iterations)
-      {
-        apply(zeta, zeta_rot, false, p, ax);
-        double pap = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          pap += p[k] * ax[k];
-        const double alpha  = rz / pap;
-        double       rz_new = 0.;
-        r_norm2             = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          {
-            x[k] += alpha * p[k];
-            r[k] -= alpha * ax[k];
-            z[k] = r[k] / diag[k];
-            rz_new += r[k] * z[k];
-            r_norm2 += r[k] * r[k];
-          }
-        const double beta = rz_new / rz;
-        rz                = rz_new;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          p[k] = z[k] + beta * p[k];
-        ++it;
-      }
-    stat.iterations = it;
-    stat.residual =
-      rhs_norm2 > 0. ? std::sqrt(r_norm2 / rhs_norm2) : std::sqrt(r_norm2);
-    stat.converged = r_norm2 <= goal2;
+    const bool forces_converged = stat.converged;
+    solve(zeta, zeta_rot, Resistance::true_gap, rhs, x, stat);
+    stat.converged &= forces_converged;
 
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < dim; ++d)
@@ -558,6 +643,9 @@ namespace Fidus::Contact
         const Local v = gather(b, x), v_star = gather(b, x_star);
         b.force = b.r_true * closing_speed(b, v) -
                   b.r_resolved * closing_speed(b, v_star);
+        if (!x_force.empty())
+          b.force -= (b.r_resolved_force - b.r_resolved) *
+                     closing_speed(b, gather(b, x_force));
         if (!settings.tangential)
           continue;
         Local       f = loads_of_sliding(b, b.t_true, dim, v, true);

@@ -220,13 +220,29 @@ namespace Fidus
         {
           const std::vector<double> v =
             parse_numbers(range, "Fluid/Lubrication range");
-          if (v.size() != 1)
+          if (v.empty() || v.size() > 2)
             throw InputError("entry 'Fluid/Lubrication range' has the value '" +
                              range +
-                             "'; allowed: auto or one gap in finest cell "
-                             "sizes > 0");
+                             "'; allowed: auto, one gap in finest cell sizes "
+                             "> 0 (particle pairs and walls), or two "
+                             "(particle pairs, walls)");
           lubrication_range      = v[0];
-          lubrication_wall_range = v[0];
+          lubrication_wall_range = v.back();
+        }
+      const std::string flow_range =
+        Utilities::trim(prm.get("Lubrication flow range"));
+      if (flow_range == "auto")
+        lubrication_flow_range = dim == 3 ? 0.45 : lubrication_range;
+      else
+        {
+          const std::vector<double> v =
+            parse_numbers(flow_range, "Fluid/Lubrication flow range");
+          if (v.size() != 1)
+            throw InputError(
+              "entry 'Fluid/Lubrication flow range' has the value '" +
+              flow_range +
+              "'; allowed: auto or one gap in finest cell sizes > 0");
+          lubrication_flow_range = v[0];
         }
       lubrication_tangential = prm.get_bool("Lubrication tangential terms");
       prm.enter_subsection("Linear solver");
@@ -749,11 +765,21 @@ namespace Fidus
               }
       }
 
-    if (lubrication && !(lubrication_range > 0.))
+    if (lubrication && !(lubrication_range > 0. && lubrication_wall_range > 0.))
       {
         std::ostringstream m;
         m << "entry 'Fluid/Lubrication range' has the value "
-          << lubrication_range
+          << (lubrication_range > 0. ? lubrication_wall_range :
+                                       lubrication_range)
+          << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
+          << "Lubrication correction' is true";
+        throw InputError(m.str());
+      }
+    if (lubrication && !(lubrication_flow_range > 0.))
+      {
+        std::ostringstream m;
+        m << "entry 'Fluid/Lubrication flow range' has the value "
+          << lubrication_flow_range
           << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
           << "Lubrication correction' is true";
         throw InputError(m.str());

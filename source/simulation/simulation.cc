@@ -143,6 +143,8 @@ namespace Fidus
         ls.range = parameters.lubrication_range * parameters.finest_cell_size();
         ls.wall_range =
           parameters.lubrication_wall_range * parameters.finest_cell_size();
+        ls.flow_range =
+          parameters.lubrication_flow_range * parameters.finest_cell_size();
         ls.roughness        = parameters.roughness;
         ls.nothing_resolved = !fictitious;
         ls.drag             = parameters.drag_coefficient;
@@ -150,6 +152,15 @@ namespace Fidus
         lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
         lubrication->set_walls(box.walls);
         lubrication->set_periodicity(box.periods);
+        if (!parameters.external_forces.empty())
+          {
+            // The force density is spread over each particle's solid, so
+            // the fluid solve is driven by the whole force.
+            std::vector<Contact::Vec3> f;
+            for (const auto &c : parameters.external_forces)
+              f.push_back({{c[0], c[1], c[2]}});
+            lubrication->set_external_forces(f);
+          }
       }
 
     solid_radii = parameters.radii;

@@ -65,6 +65,12 @@ expect_error "external force without the fluid" "Particles/External force' is se
   "$(base; printf 'subsection Particles\n  set External force = 0, -1\nend\nsubsection Fluid\n  set Model = undisturbed shear\nend\n')"
 expect_error "lubrication range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 0\nend\n')"
+expect_error "lubrication wall range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 0.3, 0\nend\n')"
+expect_error "lubrication range three numbers" "Fluid/Lubrication range' has the value '1, 2, 3'; allowed: auto, one gap" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 1, 2, 3\nend\n')"
+expect_error "lubrication flow range 0" "Fluid/Lubrication flow range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication flow range = 0\nend\n')"
 expect_error "negative roughness" "Roughness" \
   "$(base; printf 'subsection Contact\n  set Roughness = -1\nend\n')"
 expect_error "negative drag coefficient" "Drag coefficient" \

@@ -24,6 +24,14 @@ namespace Fidus::Contact
     /// a mesh face, so the mesh resolves the squeeze against it further
     /// down than between two cut particle surfaces (doc/lubrication.md).
     double wall_range = -1.;
+    /// Gap h_f (length) whose squeeze resistance the fluid solve shows when
+    /// the ambient flow, not a force, closes a pair's gap; < 0: the same as
+    /// range. The mesh resists a flow-driven approach less than a
+    /// force-driven one (doc/lubrication.md, "Two spheres held in shear"),
+    /// so the two parts of u* are corrected from different gaps: the part
+    /// driven by the external forces (set_external_forces()) from range,
+    /// the rest from flow_range.
+    double flow_range = -1.;
     /// Gaps below roughness * (smaller radius of the pair; the radius for a
     /// wall) count as that gap: the resistance stops growing there and the
     /// contact model takes over.
@@ -80,10 +88,13 @@ namespace Fidus::Contact
     double        length = 0.;
     double        gap    = 0.;
     /// Squeeze resistance of the true gap (capped by the roughness) and of
-    /// the part the fluid solve already carries.
-    double r_true     = 0.;
-    double r_resolved = 0.;
-    double force      = 0.;
+    /// the part the fluid solve already carries: in its response to the
+    /// flow (r_resolved) and to the external forces (r_resolved_force). Each
+    /// is that of the larger of the gap and its range.
+    double r_true           = 0.;
+    double r_resolved       = 0.;
+    double r_resolved_force = 0.;
+    double force            = 0.;
     /// Radii of the two surfaces; a_j = 0 for a wall.
     double a_i = 0.;
     double a_j = 0.;
@@ -119,6 +130,18 @@ namespace Fidus::Contact
    * a symmetric positive definite system in the velocities (implicit: the
    * resistance of a closing gap acts on the velocity that closes it). Pairs
    * farther than h_c keep u = u*; so does an isolated particle.
+   *
+   * The mesh shows a pair a different resolved resistance when the ambient
+   * flow closes its gap (that of a gap h_f, LubricationSettings::flow_range)
+   * than when a force pushes it (h_c). With external forces F, the part of
+   * u* they drive is modelled as the solution u*_F of the resolved system
+   * with R(h_c) and F on the right, and the right-hand side becomes
+   *
+   *   zeta_i u*_i + sum_k [R(h_f) n_k n_k.(u*_i - u*_j)
+   *                        + (R(h_c) - R(h_f)) n_k n_k.(u*_F,i - u*_F,j)],
+   *
+   * which gives the true resistance's response to both the flow and the
+   * forces when the mesh behaves as modelled.
    *
    * With LubricationSettings::tangential the same is done for the
    * tangential terms, with the angular velocities w among the unknowns
@@ -162,6 +185,11 @@ namespace Fidus::Contact
     /// Periodic directions (see PairSearch::set_periodicity()).
     void
     set_periodicity(const std::array<double, 3> &periods);
+
+    /// The external force on each particle that drives the fluid solve
+    /// (per unit length in 2D); empty (the default): none.
+    void
+    set_external_forces(const std::vector<Vec3> &forces);
 
     /// The settings, e.g. the range h_c.
     const LubricationSettings &
@@ -282,19 +310,41 @@ namespace Fidus::Contact
     rotational_drag(double a) const;
 
   private:
-    /// y = A x for the corrected system (or its resolved part); x and y
+    /// Which resistance of the bonds a system uses.
+    enum class Resistance
+    {
+      /// the true gap's
+      true_gap,
+      /// what the fluid solve carries in its response to the flow
+      resolved,
+      /// what it carries in its response to the external forces
+      resolved_force
+    };
+
+    /// y = A x for the corrected system (or its resolved parts); x and y
     /// hold 6 values per particle, the velocity and the angular velocity.
     void
     apply(const std::vector<double> &zeta,
           const std::vector<double> &zeta_rot,
-          bool                       resolved,
+          Resistance                 resistance,
           const std::vector<double> &x,
           std::vector<double>       &y) const;
+
+    /// Solve A x = @p rhs by Jacobi-preconditioned conjugate gradients, from
+    /// the initial @p x; records iterations and residual in @p stat.
+    void
+    solve(const std::vector<double> &zeta,
+          const std::vector<double> &zeta_rot,
+          Resistance                 resistance,
+          const std::vector<double> &rhs,
+          std::vector<double>       &x,
+          LubricationStatistics     &stat) const;
 
     LubricationSettings          settings;
     PairSearch                   search;
     std::vector<Wall>            walls;
     std::vector<LubricationBond> bond;
+    std::vector<Vec3>            external_force;
   };
 } // namespace Fidus::Contact
 

@@ -119,6 +119,10 @@ namespace Fidus
     /// in 2D, 0.3 and 0.2 in 3D.
     double lubrication_range      = 2.;
     double lubrication_wall_range = 2.;
+    /// The pairs' range in the fluid solve's response to the flow
+    /// (Fluid/Lubrication flow range); 'auto': the pairs' range in 2D,
+    /// 0.45 in 3D.
+    double lubrication_flow_range = 2.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
     bool         lubrication_tangential     = true;
     double       linear_tolerance           = 1e-6;

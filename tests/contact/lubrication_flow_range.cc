@@ -1,0 +1,139 @@
+// The lubrication correction's two resolved responses
+// (LubricationSettings::flow_range, LubricationCorrection::
+// set_external_forces): the mesh is modelled to resist a pair's approach
+// like a gap h_f when the ambient flow closes it and like a gap h_c when a
+// force pushes it. Head-on pairs of equal spheres and discs, where every
+// answer is a closed form (zeta the drag, R(h) the squeeze resistance):
+//
+// a. Flow only: a predicted closing speed 2D / (zeta + 2 R(h_f)) (the mesh's
+//    response to a drive D) becomes 2D / (zeta + 2 R(h)), 1e-12.
+// b. Forces only: a pair pushed together by +-F, predicted closing speed
+//    2F / (zeta + 2 R(h_c)), becomes 2F / (zeta + 2 R(h)), 1e-12, and the
+//    stored bond force is what changed the velocities: zeta (u_0 - u*_0).n
+//    = -force.
+// c. Both at once: the sum of a and b (the correction is linear), 1e-12.
+// d. A gap between h_c and h_f, forces only: the mesh resolves the forced
+//    approach there, so u = u* (1e-12); with the flow it is corrected.
+// e. Without external forces the flow range alone acts: the answer of a
+//    single range h_f (flow_range < 0), 1e-12.
+
+#include "test_tools.h"
+
+#include <cmath>
+#include <fidus/contact/lubrication_correction.h>
+#include <iostream>
+#include <string>
+
+using namespace Fidus::Contact;
+using TestTools::check;
+
+namespace
+{
+  constexpr double eta = 1.3, a = 0.1;
+
+  double
+  resistance(const unsigned dim, const double gap)
+  {
+    return LubricationCorrection::squeeze_resistance(dim, eta, a, a, gap);
+  }
+
+  /// Closing speed n.(u_0 - u_1) after the correction of a head-on pair at
+  /// gap @p h whose predicted closing speed is @p closing_star, with
+  /// external forces +-@p force pushing it together; @p bond_force gets the
+  /// stored normal force of the bond (0 without a bond).
+  double
+  corrected(const unsigned dim,
+            const double   h,
+            const double   h_c,
+            const double   h_f,
+            const double   closing_star,
+            const double   force,
+            double        &bond_force,
+            double        &velocity_change)
+  {
+    LubricationSettings s;
+    s.dimension  = dim;
+    s.viscosity  = eta;
+    s.range      = h_c;
+    s.flow_range = h_f;
+    s.roughness  = 0.;
+    s.tangential = true;
+    LubricationCorrection   lub(s);
+    const std::vector<Vec3> x = {{{0.3, 0.4, 0.}},
+                                 {{0.3 + 2 * a + h, 0.4, 0.}}};
+    if (force != 0.)
+      lub.set_external_forces({{{force, 0., 0.}}, {{-force, 0., 0.}}});
+    const std::vector<Vec3> u_star = {{{0.5 * closing_star, 0.1, 0.}},
+                                      {{-0.5 * closing_star, 0.1, 0.}}};
+    std::vector<Vec3>       u;
+    lub.correct(x, {a, a}, u_star, u);
+    bond_force      = lub.bonds().empty() ? 0. : lub.bonds()[0].force;
+    velocity_change = lub.drag(a) * (u[0][0] - u_star[0][0]);
+    return u[0][0] - u[1][0];
+  }
+} // namespace
+
+int
+main()
+{
+  for (const unsigned dim : {2u, 3u})
+    {
+      const std::string D = std::to_string(dim) + "D: ";
+      const double      h = 1e-3, h_c = 0.02, h_f = 0.035;
+      const double      zeta = dim == 3 ? 6. * M_PI * eta * a : 4. * M_PI * eta;
+      const double      drive = 0.7, force = 0.4;
+      const auto        speed = [&](const double push, const double gap) {
+        return 2. * push / (zeta + 2. * resistance(dim, gap));
+      };
+      double f_bond = 0., change = 0.;
+
+      const double flow =
+        corrected(dim, h, h_c, h_f, speed(drive, h_f), 0., f_bond, change);
+      check(D + "a. flow: 2D / (zeta + 2 R(h_f)) becomes 2D / (zeta + 2 R(h))",
+            std::abs(flow - speed(drive, h)) < 1e-12 * speed(drive, h));
+
+      const double forced =
+        corrected(dim, h, h_c, h_f, speed(force, h_c), force, f_bond, change);
+      check(D +
+              "b. forces: 2F / (zeta + 2 R(h_c)) becomes 2F / (zeta + 2 R(h)); "
+              "the bond force is zeta (u - u*)",
+            std::abs(forced - speed(force, h)) < 1e-12 * speed(force, h) &&
+              std::abs(change + f_bond) < 1e-9 * std::abs(f_bond) &&
+              f_bond > 0.);
+
+      const double both = corrected(dim,
+                                    h,
+                                    h_c,
+                                    h_f,
+                                    speed(drive, h_f) + speed(force, h_c),
+                                    force,
+                                    f_bond,
+                                    change);
+      check(D + "c. flow and forces: the sum of a and b",
+            std::abs(both - speed(drive, h) - speed(force, h)) < 1e-12 * both);
+
+      // Between the ranges: the forced approach is resolved, the flow's not.
+      const double h_mid      = 0.5 * (h_c + h_f);
+      const double forced_mid = corrected(dim,
+                                          h_mid,
+                                          h_c,
+                                          h_f,
+                                          speed(force, h_mid),
+                                          force,
+                                          f_bond,
+                                          change);
+      const double flow_mid =
+        corrected(dim, h_mid, h_c, h_f, speed(drive, h_f), 0., f_bond, change);
+      check(D + "d. gap between h_c and h_f: forced u = u*, flow corrected",
+            std::abs(forced_mid - speed(force, h_mid)) <
+                1e-12 * speed(force, h_mid) &&
+              std::abs(flow_mid - speed(drive, h_mid)) <
+                1e-12 * speed(drive, h_mid));
+
+      const double single =
+        corrected(dim, h, h_f, -1., speed(drive, h_f), 0., f_bond, change);
+      check(D + "e. no external forces: the same as a single range h_f",
+            std::abs(single - flow) < 1e-12 * flow);
+    }
+  return 0;
+}
