@@ -20,7 +20,9 @@
 # they change the far field by a few per cent.
 # Env: A (radius, default 0.05), LEVELS (default "5 6": a diameter spans 3.2
 # and 6.4 cells), GAPS (default "0.1 0.02 0.005"), ANGLES (default "135 90"),
-# DT (default 1e-4), RANGE (Lubrication range, default auto), TANGENTIAL
+# DT (default 1e-4), RANGE (Lubrication range, default auto), FLOW_RANGE
+# (Lubrication flow range, default auto; 0.3 gives the correction as it was
+# before the flow range existed, commit 3ac5e56), TANGENTIAL
 # (Lubrication tangential terms, default true), MAX_UZAWA (default 10), NP (MPI
 # ranks per run, default 1), JOBS (runs at a time, default 1), WORK (keep the
 # runs there), FIDUS.
@@ -60,6 +62,7 @@ subsection Fluid
   set Shared cells = fluid
   set Lubrication correction = true
   set Lubrication range = ${RANGE:-auto}
+  set Lubrication flow range = ${FLOW_RANGE:-auto}
   set Lubrication tangential terms = ${TANGENTIAL:-true}
   subsection Linear solver
     set Tolerance = 1e-9
