@@ -274,6 +274,24 @@ namespace Fidus::Contact
 
 
 
+  std::array<double, 2>
+  LubricationCorrection::resistances(const LubricationBond &b,
+                                     const Resistance       resistance)
+  {
+    // The two resolved responses differ in the normal squeeze only.
+    switch (resistance)
+      {
+        case Resistance::true_gap:
+          return {{b.r_true, b.t_true}};
+        case Resistance::resolved:
+          return {{b.r_resolved, b.t_resolved}};
+        default:
+          return {{b.r_resolved_force, b.t_resolved}};
+      }
+  }
+
+
+
   void
   LubricationCorrection::apply(const std::vector<double> &zeta,
                                const std::vector<double> &zeta_rot,
@@ -281,8 +299,7 @@ namespace Fidus::Contact
                                const std::vector<double> &x,
                                std::vector<double>       &y) const
   {
-    const bool        resolved = resistance != Resistance::true_gap;
-    const std::size_t n        = zeta.size();
+    const std::size_t n = zeta.size();
     y.assign(6 * n, 0.);
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
@@ -292,21 +309,15 @@ namespace Fidus::Contact
         }
     for (const LubricationBond &b : bond)
       {
-        const Local  v = gather(b, x);
-        const double r =
-          resistance == Resistance::true_gap ? b.r_true :
-          resistance == Resistance::resolved ? b.r_resolved :
-                                               b.r_resolved_force;
-        scatter_add(b, normal_loads(b, r, v), -1., y);
+        const Local v                       = gather(b, x);
+        const auto [r_normal, c_tangential] = resistances(b, resistance);
+        scatter_add(b, normal_loads(b, r_normal, v), -1., y);
         if (settings.tangential)
-          scatter_add(b,
-                      loads_of_sliding(b,
-                                       resolved ? b.t_resolved : b.t_true,
-                                       settings.dimension,
-                                       v,
-                                       false),
-                      -1.,
-                      y);
+          scatter_add(
+            b,
+            loads_of_sliding(b, c_tangential, settings.dimension, v, false),
+            -1.,
+            y);
       }
   }
 
@@ -331,12 +342,7 @@ namespace Fidus::Contact
     // The exact diagonal of the bond terms, one local unit vector at a time.
     for (const LubricationBond &b : bond)
       {
-        const double R =
-          resistance == Resistance::true_gap ? b.r_true :
-          resistance == Resistance::resolved ? b.r_resolved :
-                                               b.r_resolved_force;
-        const double c =
-          resistance == Resistance::true_gap ? b.t_true : b.t_resolved;
+        const auto [R, c] = resistances(b, resistance);
         for (unsigned int k = 0; k < (is_wall(b) ? 6u : 12u); ++k)
           {
             Local e{};

@@ -321,6 +321,11 @@ namespace Fidus::Contact
       resolved_force
     };
 
+    /// The normal squeeze resistance and the tangential coefficient of
+    /// bond @p b in the system @p resistance.
+    static std::array<double, 2>
+    resistances(const LubricationBond &b, Resistance resistance);
+
     /// y = A x for the corrected system (or its resolved parts); x and y
     /// hold 6 values per particle, the velocity and the angular velocity.
     void
