@@ -23,7 +23,8 @@
 # DT (default 1e-4), RANGE (Lubrication range, default auto), FLOW_RANGE
 # (Lubrication flow range, default auto; 0.3 gives the correction as it was
 # before the flow range existed, commit 3ac5e56), TANGENTIAL
-# (Lubrication tangential terms, default true), MAX_UZAWA (default 10), NP (MPI
+# (Lubrication tangential terms, default true), RIGIDITY (Rigidity tolerance,
+# default 1e-4), MAX_UZAWA (default 10), NP (MPI
 # ranks per run, default 1), JOBS (runs at a time, default 1), WORK (keep the
 # runs there), FIDUS.
 # Usage: contrib/benchmarks/shear_pair_velocity.sh
@@ -57,7 +58,7 @@ subsection Domain
   set Shear rate = 1
 end
 subsection Fluid
-  set Rigidity tolerance = 1e-4
+  set Rigidity tolerance = ${RIGIDITY:-1e-4}
   set Maximum Uzawa iterations = ${MAX_UZAWA:-10}
   set Shared cells = fluid
   set Lubrication correction = true
