@@ -765,25 +765,19 @@ namespace Fidus
               }
       }
 
-    if (lubrication && !(lubrication_range > 0. && lubrication_wall_range > 0.))
-      {
-        std::ostringstream m;
-        m << "entry 'Fluid/Lubrication range' has the value "
-          << (lubrication_range > 0. ? lubrication_wall_range :
-                                       lubrication_range)
-          << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
-          << "Lubrication correction' is true";
-        throw InputError(m.str());
-      }
-    if (lubrication && !(lubrication_flow_range > 0.))
-      {
-        std::ostringstream m;
-        m << "entry 'Fluid/Lubrication flow range' has the value "
-          << lubrication_flow_range
-          << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
-          << "Lubrication correction' is true";
-        throw InputError(m.str());
-      }
+    const auto require_gap = [&](const std::string &entry, const double gap) {
+      if (lubrication && !(gap > 0.))
+        {
+          std::ostringstream m;
+          m << "entry 'Fluid/" << entry << "' has the value " << gap
+            << "; allowed: a gap in finest cell sizes > 0 when 'Fluid/"
+            << "Lubrication correction' is true";
+          throw InputError(m.str());
+        }
+    };
+    require_gap("Lubrication range", lubrication_range);
+    require_gap("Lubrication range", lubrication_wall_range);
+    require_gap("Lubrication flow range", lubrication_flow_range);
 
     // The held solid, radius a - c h at the finest cell size h, must exist.
     if (fluid_model == FluidModel::fictitious_domain)

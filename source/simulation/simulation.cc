@@ -152,15 +152,9 @@ namespace Fidus
         lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
         lubrication->set_walls(box.walls);
         lubrication->set_periodicity(box.periods);
-        if (!parameters.external_forces.empty())
-          {
-            // The force density is spread over each particle's solid, so
-            // the fluid solve is driven by the whole force.
-            std::vector<Contact::Vec3> f;
-            for (const auto &c : parameters.external_forces)
-              f.push_back({{c[0], c[1], c[2]}});
-            lubrication->set_external_forces(f);
-          }
+        // The force density is spread over each particle's solid, so the
+        // fluid solve is driven by the whole force.
+        lubrication->set_external_forces(parameters.external_forces);
       }
 
     solid_radii = parameters.radii;
