@@ -7,15 +7,17 @@
 # largest Uzawa and FGMRES counts per step, max |U| and |omega| over the
 # run, and whether any value was NaN (contrib/benchmarks/summarize_run.sh).
 # At area fraction 0.4 many gaps are below the cell size, where one cell
-# would have to carry two rigid motions: the Uzawa loop cannot reach its
-# tolerance there (a warning per step) and every further iteration is a
-# full solve, so the loop is capped at 3.
+# would have to carry two rigid motions: with such cells held rigid
+# (SHARED_CELLS=rigid, the seed's model) the Uzawa loop cannot reach its
+# tolerance (a warning per step; cap it with MAX_UZAWA=3). fidus's default
+# releases them, since a contact model is on (doc/fluid.md).
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
-# MAX_UZAWA=<n> (default 3), SHARED_CELLS=rigid|fluid (default rigid) and
-# REUSE=true|false (default true) set Fluid/Maximum Uzawa iterations,
-# Fluid/Shared cells and Fluid/Reuse multiplier; INEXACT=<factor> (default
-# 0) sets Fluid/Linear solver/Inexact Uzawa factor; LUBRICATION=true|false
-# (default false) sets Fluid/Lubrication correction.
+# MAX_UZAWA=<n> (default 50, fidus's), SHARED_CELLS=rigid|fluid|auto and
+# REUSE=true|false|auto (default auto, fidus's) set Fluid/Maximum Uzawa
+# iterations, Fluid/Shared cells and Fluid/Reuse multiplier;
+# INEXACT=<factor> (default 0) sets Fluid/Linear solver/Inexact Uzawa
+# factor; LUBRICATION=true|false (default false) sets Fluid/Lubrication
+# correction.
 # Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
@@ -59,9 +61,9 @@ subsection Domain
 end
 subsection Fluid
   set Model = $fluid
-  set Maximum Uzawa iterations = ${MAX_UZAWA:-3}
-  set Shared cells = ${SHARED_CELLS:-rigid}
-  set Reuse multiplier = ${REUSE:-true}
+  set Maximum Uzawa iterations = ${MAX_UZAWA:-50}
+  set Shared cells = ${SHARED_CELLS:-auto}
+  set Reuse multiplier = ${REUSE:-auto}
   set Lubrication correction = ${LUBRICATION:-false}
   subsection Linear solver
     set Inexact Uzawa factor = ${INEXACT:-0}

@@ -11,9 +11,12 @@
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
 # from its newest checkpoint ('fidus --resume').
-# SHARED_CELLS=fluid releases cells shared by two particles (default rigid,
-# the seed's model), LUBRICATION=true adds the sub-grid lubrication
-# correction (default false).
+# SHARED_CELLS=rigid|fluid|auto and REUSE=true|false|auto set Fluid/Shared
+# cells and Fluid/Reuse multiplier (default auto, fidus's default: released
+# shared cells and no warm start, since a contact model is on);
+# LUBRICATION=true adds the sub-grid lubrication correction (default
+# false); RIGIDITY=<tolerance> (default 1e-2) and MAX_UZAWA=<n> (default 5)
+# set Fluid/Rigidity tolerance and Fluid/Maximum Uzawa iterations.
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
 #          [strain, default 1] [N, default 24] [phi, default 0.25] \
 #          [max level, default 4] [time step, default 0.1]
@@ -61,9 +64,10 @@ subsection Domain
 end
 subsection Fluid
   set Model = fictitious domain
-  set Rigidity tolerance = 1e-2
-  set Maximum Uzawa iterations = 5
-  set Shared cells = ${SHARED_CELLS:-rigid}
+  set Rigidity tolerance = ${RIGIDITY:-1e-2}
+  set Maximum Uzawa iterations = ${MAX_UZAWA:-5}
+  set Shared cells = ${SHARED_CELLS:-auto}
+  set Reuse multiplier = ${REUSE:-auto}
   set Lubrication correction = ${LUBRICATION:-false}
 end
 subsection Particles

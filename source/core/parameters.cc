@@ -177,6 +177,8 @@ namespace Fidus
     dimension              = prm.get_integer("Dimension");
     output_directory       = prm.get("Output directory");
     const unsigned int dim = dimension;
+    // Fluid entries whose 'auto' depends on the contact model, read below.
+    std::string shared_cells_choice, reuse_choice;
 
     prm.enter_subsection("Domain");
     {
@@ -206,9 +208,10 @@ namespace Fidus
       rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
       sliver_threshold         = prm.get_double("Sliver threshold");
       max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
-      reuse_multiplier         = prm.get_bool("Reuse multiplier");
-      release_shared_cells     = prm.get("Shared cells") == "fluid";
+      reuse_choice             = prm.get("Reuse multiplier");
+      shared_cells_choice      = prm.get("Shared cells");
       solid_retraction         = prm.get_double("Solid retraction");
+      solid_smoothing          = prm.get_double("Solid smoothing");
       lubrication              = prm.get_bool("Lubrication correction");
       const std::string range  = Utilities::trim(prm.get("Lubrication range"));
       if (range == "auto")
@@ -503,6 +506,15 @@ namespace Fidus
       roughness           = prm.get_double("Roughness");
     }
     prm.leave_subsection();
+
+    // The 'auto' choices of the fluid depend on the contact model: a pair
+    // closer than a cell is released where something else keeps it apart.
+    release_shared_cells =
+      shared_cells_choice == "auto" ?
+        contact_model != ContactModel::none || lubrication :
+        shared_cells_choice == "fluid";
+    reuse_multiplier =
+      reuse_choice == "auto" ? !release_shared_cells : reuse_choice == "true";
 
     prm.enter_subsection("Time stepping");
     {

@@ -133,11 +133,13 @@ namespace Fidus
                         "Uzawa iterations per solve before a warning, >= 1.");
       prm.declare_entry(
         "Reuse multiplier",
-        "true",
-        Patterns::Bool(),
+        "auto",
+        Patterns::Selection("true|false|auto"),
         "Start the Uzawa loop of a time step from the previous step's "
         "multiplier when the mesh has not changed (a warm start); otherwise "
-        "from zero.");
+        "from zero. auto: true with rigid shared cells, false where they "
+        "are released ('Shared cells'), where the last step's multiplier "
+        "is a poor start and about half the loops stalled (doc/fluid.md).");
       prm.declare_entry(
         "Solid retraction",
         "0",
@@ -148,6 +150,19 @@ namespace Fidus
         "c = 0 (the seed's model) a particle acts about half a cell larger "
         "than it is (doc/rheology.md). The contact model always uses a. "
         "Between 0 and 1; the retracted radius must stay positive.");
+      prm.declare_entry(
+        "Solid smoothing",
+        "0",
+        Patterns::Double(0., 2.),
+        "Width, in finest cells, of the layer across each particle surface "
+        "over which the solid fraction falls linearly from 1 to 0 "
+        "(centred on the surface of the held solid). The penalty viscosity "
+        "is mixed with the fluid's by that fraction, and the multiplier, "
+        "the rigidity residual, the rigid projection and the stresses weigh "
+        "each quadrature point by it, so that a particle's velocity changes "
+        "continuously as it moves across the mesh. 0 (the seed's model) "
+        "samples the solid sharply at the quadrature points. Between 0 "
+        "and 2.");
       prm.declare_entry(
         "Lubrication correction",
         "false",
@@ -194,8 +209,8 @@ namespace Fidus
         "(doc/lubrication.md); in 2D the pairs' 'Lubrication range'.");
       prm.declare_entry(
         "Shared cells",
-        "rigid",
-        Patterns::Selection("rigid|fluid"),
+        "auto",
+        Patterns::Selection("rigid|fluid|auto"),
         "Cells whose solid part lies within half a cell diameter of another "
         "particle (two particles closer than a cell, where one velocity "
         "polynomial would have to be two rigid motions). 'rigid' (the "
@@ -207,7 +222,10 @@ namespace Fidus
         "rest of its solid, the Uzawa loop converges, and the residual there "
         "is reported apart (statistics.csv: shared_cells, shared_residual); "
         "without a lubrication correction close pairs then approach and "
-        "separate far too fast (measured in doc/fluid.md).");
+        "separate far too fast (measured in doc/fluid.md). auto: 'fluid' "
+        "when a contact model ('Contact/Model' inelastic or gluey) or the "
+        "lubrication correction keeps close pairs apart, 'rigid' with "
+        "neither, where the rigid doublet is all that does.");
       prm.enter_subsection("Linear solver");
       {
         prm.declare_entry("Tolerance",

@@ -334,12 +334,18 @@ namespace Fidus
         const double eta_f = fluid_viscosity ?
                                fluid_viscosity->value(points[q]) :
                                settings.viscosity;
-        const bool   inside =
-          !candidates.empty() &&
-          solid.particle_containing(points[q], candidates) >= 0;
-        meets_solid |= inside;
+        int          entry = -1;
+        const double phi   = candidates.empty() ?
+                               0. :
+                               solid.fraction(points[q], candidates, entry);
+        meets_solid |= phi > 0.;
+        // A smoothed solid (Solid smoothing) mixes the two viscosities
+        // arithmetically, as the multiplier's load is weighted: the
+        // penalty and the multiplier then act on the same weighted strain.
         eta[q] =
-          inside && !shared_cell ? settings.penalty_factor * eta_f : eta_f;
+          shared_cell || phi == 0. ? eta_f :
+          phi == 1.                ? settings.penalty_factor * eta_f :
+                      eta_f * (1. + (settings.penalty_factor - 1.) * phi);
       }
     return meets_solid;
   }
@@ -397,15 +403,16 @@ namespace Fidus
     // that particle's rigid motions in the preconditioner's coarse space
     // (the first particle seen, in mesh order, where two meet).
     const auto mark_solid_dofs = [&](const auto &cell) {
-      int          entry    = -1;
-      unsigned int n_inside = 0;
+      int    entry    = -1;
+      double n_inside = 0.;
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const int e =
-            solid.particle_containing(fe_values.quadrature_point(q), cands);
-          if (e >= 0)
+          int          e = -1;
+          const double phi =
+            solid.fraction(fe_values.quadrature_point(q), cands, e);
+          if (phi > 0.)
             {
-              ++n_inside;
+              n_inside += phi;
               if (entry < 0)
                 entry = e;
             }
@@ -623,16 +630,19 @@ namespace Fidus
           cell_rhs   = 0;
           bool touch = false;
           for (unsigned int q = 0; q < n_q; ++q)
-            if (solid.particle_containing(fe_values.quadrature_point(q),
-                                          cands) >= 0)
-              {
-                touch = true;
-                for (unsigned int k = 0; k < dofs_per_cell; ++k)
-                  cell_rhs(k) -=
-                    (eps_lambda[q] *
-                     fe_values[velocities].symmetric_gradient(k, q)) *
-                    fe_values.JxW(q);
-              }
+            {
+              int          entry = -1;
+              const double phi =
+                solid.fraction(fe_values.quadrature_point(q), cands, entry);
+              if (phi == 0.)
+                continue;
+              touch = true;
+              for (unsigned int k = 0; k < dofs_per_cell; ++k)
+                cell_rhs(k) -=
+                  (eps_lambda[q] *
+                   fe_values[velocities].symmetric_gradient(k, q)) *
+                  phi * fe_values.JxW(q);
+            }
           if (!touch)
             continue;
           cell->get_dof_indices(dofs);

@@ -51,19 +51,19 @@ namespace Fidus
               const double e2 = (eps[q] * eps[q]) * fe_values.JxW(q);
               sums[2] += e2;
               sums[3] += fe_values.JxW(q);
-              const int k =
+              int          k = -1;
+              const double phi =
                 cands.empty() ?
-                  -1 :
-                  solid.particle_containing(fe_values.quadrature_point(q),
-                                            cands);
-              if (k < 0)
+                  0. :
+                  solid.fraction(fe_values.quadrature_point(q), cands, k);
+              if (phi == 0.)
                 continue;
-              sums[shared_cell ? 1 : 0] += e2;
+              sums[shared_cell ? 1 : 0] += phi * e2;
               if (!shared_cell)
                 {
                   const unsigned int i = solid.owner(k);
-                  sums[4 + 2 * i] += e2;
-                  sums[5 + 2 * i] += fe_values.JxW(q);
+                  sums[4 + 2 * i] += phi * e2;
+                  sums[5 + 2 * i] += phi * fe_values.JxW(q);
                 }
             }
         }

@@ -46,10 +46,13 @@ namespace Fidus
           if (cands.empty())
             continue;
           fe_values.reinit(cell);
-          unsigned int inside = 0;
+          double inside = 0.;
           for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
-            inside += solid.particle_containing(fe_values.quadrature_point(q),
-                                                cands) >= 0;
+            {
+              int entry = -1;
+              inside +=
+                solid.fraction(fe_values.quadrature_point(q), cands, entry);
+            }
           solid_fraction(index) = float(inside) / fe_values.n_quadrature_points;
         }
 

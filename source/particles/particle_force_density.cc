@@ -20,16 +20,17 @@ namespace Fidus
   ParticleForceDensity<dim>::vector_value(const Point<dim> &x,
                                           Vector<double>   &values) const
   {
-    values          = 0.;
-    const int entry = solid.particle_containing(x);
-    if (entry < 0)
+    values             = 0.;
+    int          entry = -1;
+    const double phi   = solid.fraction(x, entry);
+    if (phi == 0.)
       return;
     const unsigned int i = solid.owner(entry);
     const double       a = solid.radius(entry);
     const double       volume =
       dim == 3 ? 4. / 3. * numbers::PI * a * a * a : numbers::PI * a * a;
     for (unsigned int d = 0; d < dim; ++d)
-      values[d] = forces[i][d] / volume;
+      values[d] = phi * forces[i][d] / volume;
   }
 
 

@@ -43,13 +43,15 @@ namespace Fidus
           fe_values[velocities].get_function_values(solution, u);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
-              const Point<dim> &x = fe_values.quadrature_point(q);
-              const int         k = solid.particle_containing(x, cands);
-              if (k < 0)
+              const Point<dim> &x   = fe_values.quadrature_point(q);
+              int               k   = -1;
+              const double      phi = solid.fraction(x, cands, k);
+              if (phi == 0.)
                 continue;
               // A periodic image adds to its particle, with the lever arm
-              // taken from the image's centre.
-              const double JxW = fe_values.JxW(q);
+              // taken from the image's centre. A smoothed solid weighs each
+              // point by its solid fraction.
+              const double JxW = phi * fe_values.JxW(q);
               for (unsigned int part = 0; part < (held ? 2u : 1u); ++part)
                 {
                   double *s    = &sums[(part * n + solid.owner(k)) * stride];

@@ -70,9 +70,11 @@ namespace Fidus
             shift[d] = {{false, false}};
             if (!periodic[d])
               continue;
-            shift[d][0] = centers[i][d] + radii[i] + halo > upper_right[d];
-            shift[d][1] = centers[i][d] - radii[i] - halo < lower_left[d];
-            any         = any || shift[d][0] || shift[d][1];
+            // A smoothed solid reaches w/2 beyond the surface.
+            const double reach = radii[i] + 0.5 * smoothing + halo;
+            shift[d][0]        = centers[i][d] + reach > upper_right[d];
+            shift[d][1]        = centers[i][d] - reach < lower_left[d];
+            any                = any || shift[d][0] || shift[d][1];
           }
         if (!any)
           continue;
@@ -120,7 +122,7 @@ namespace Fidus
       extent = std::max(extent, upper_right[d] - lower_left[d]);
     // Bins of about one diameter, but never more than ~1e6 bins in all.
     const double max_bins_per_dir = dim == 2 ? 1000. : 100.;
-    bin_size = std::max(2. * max_r, extent / max_bins_per_dir);
+    bin_size = std::max(2. * max_r + smoothing, extent / max_bins_per_dir);
     if (!(bin_size > 0))
       bin_size = extent;
     origin            = lower_left;
@@ -136,18 +138,17 @@ namespace Fidus
     for (unsigned int i = 0; i < centers.size(); ++i)
       {
         std::array<int, dim> lo, hi;
+        const double         reach = radii[i] + 0.5 * smoothing;
         for (unsigned int d = 0; d < dim; ++d)
           {
-            lo[d] =
-              std::clamp(int(std::floor((centers[i][d] - radii[i] - origin[d]) /
-                                        bin_size)),
-                         0,
-                         n_bins[d] - 1);
-            hi[d] =
-              std::clamp(int(std::floor((centers[i][d] + radii[i] - origin[d]) /
-                                        bin_size)),
-                         0,
-                         n_bins[d] - 1);
+            lo[d] = std::clamp(
+              int(std::floor((centers[i][d] - reach - origin[d]) / bin_size)),
+              0,
+              n_bins[d] - 1);
+            hi[d] = std::clamp(
+              int(std::floor((centers[i][d] + reach - origin[d]) / bin_size)),
+              0,
+              n_bins[d] - 1);
           }
         for_each_bin<dim>(lo, hi, [&](const std::array<int, dim> &b) {
           bins[bin_index(b)].push_back(i);
@@ -190,7 +191,7 @@ namespace Fidus
       }
     for_each_bin<dim>(lo, hi, [&](const std::array<int, dim> &b) {
       for (const unsigned int i : bins[bin_index(b)])
-        if (x.distance(centers[i]) < r + radii[i])
+        if (x.distance(centers[i]) < r + radii[i] + 0.5 * smoothing)
           out.push_back(i);
     });
     // A particle spanning several bins is found once per bin.
@@ -228,6 +229,49 @@ namespace Fidus
           return -1;
       }
     return particle_containing(x, bins[bin_index(b)]);
+  }
+
+
+
+  template <int dim>
+  double
+  SolidIndicator<dim>::fraction(const Point<dim>                &x,
+                                const std::vector<unsigned int> &cands,
+                                int                             &entry) const
+  {
+    entry = -1;
+    if (smoothing == 0.)
+      {
+        entry = particle_containing(x, cands);
+        return entry >= 0 ? 1. : 0.;
+      }
+    double best = 0.;
+    for (const unsigned int i : cands)
+      {
+        const double phi =
+          std::clamp(0.5 - (x.distance(centers[i]) - radii[i]) / smoothing,
+                     0.,
+                     1.);
+        if (phi > best)
+          {
+            best  = phi;
+            entry = int(i);
+          }
+      }
+    return best;
+  }
+
+
+
+  template <int dim>
+  double
+  SolidIndicator<dim>::fraction(const Point<dim> &x, int &entry) const
+  {
+    entry = -1;
+    if (centers.empty())
+      return 0.;
+    candidates(x, 0., scratch);
+    return fraction(x, scratch, entry);
   }
 
 

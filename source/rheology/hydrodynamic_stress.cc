@@ -155,16 +155,21 @@ namespace Fidus
                                                                  e_lambda);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const int entry =
+            int          entry = -1;
+            const double phi =
               cands.empty() ?
-                -1 :
-                solid.particle_containing(fe_values.quadrature_point(q), cands);
-            const bool inside = entry >= 0;
-            sigma[q]          = 2. * (inside && held ? eta_s : eta_f) * e_u[q];
+                0. :
+                solid.fraction(fe_values.quadrature_point(q), cands, entry);
+            const bool inside = phi > 0.;
+            // As the assembly mixes a smoothed solid's viscosity and
+            // weighs its multiplier (phi = 1 or 0 for a sharp solid).
+            const double eta =
+              inside && held ? eta_f + phi * (eta_s - eta_f) : eta_f;
+            sigma[q] = 2. * eta * e_u[q];
             for (unsigned int d = 0; d < dim; ++d)
               sigma[q][d][d] -= p[q];
             if (inside && held)
-              sigma[q] += e_lambda[q];
+              sigma[q] += phi * e_lambda[q];
 
             Tensor3 s3 = embed<dim>(sigma[q]);
             if (dim == 2)
@@ -174,17 +179,18 @@ namespace Fidus
             add_to(box, 0, s3, JxW);
             add_to(box, 6, e3, JxW);
             box[14] += JxW;
+            // A smoothed solid splits the point between particle and fluid.
             if (inside)
               {
                 const std::size_t o = 13 * std::size_t(solid.owner(entry));
-                add_to(part, o, s3, JxW);
-                add_to(part, o + 6, e3, JxW);
-                part[o + 12] += JxW;
+                add_to(part, o, s3, phi * JxW);
+                add_to(part, o + 6, e3, phi * JxW);
+                part[o + 12] += phi * JxW;
               }
-            else
+            if (phi < 1.)
               {
-                box[12] += p[q] * JxW;
-                box[13] += JxW;
+                box[12] += p[q] * (1. - phi) * JxW;
+                box[13] += (1. - phi) * JxW;
               }
           }
 

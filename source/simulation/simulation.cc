@@ -160,6 +160,7 @@ namespace Fidus
     solid_radii = parameters.radii;
     for (double &a : solid_radii)
       a -= parameters.solid_retraction * box.h_finest;
+    solid.set_smoothing_width(parameters.solid_smoothing * box.h_finest);
 
     if (root)
       std::filesystem::create_directories(prm.output_directory);

@@ -3,6 +3,7 @@
 // particles overlap (normalised distance below 1); with 'inelastic' and
 // 'gluey' they never come closer than 1 - tolerance. The same run on 1 and
 // 2 MPI ranks prints the same positions (files .output and .mpirun=2.output).
+// Shared cells are held rigid, as in the seed's model and its prm.
 
 #include "../fidus_test.h"
 
@@ -17,7 +18,8 @@ run(const std::string &model)
   std::ostringstream prm;
   prm << "set Dimension = 2\n"
       << "set Output directory = output_" << model << "\n"
-      << "subsection Fluid\n  set Rigidity tolerance = 1e-3\nend\n"
+      << "subsection Fluid\n  set Rigidity tolerance = 1e-3\n"
+      << "  set Shared cells = rigid\nend\n" // the seed's model
       << "subsection Particles\n  set Radius = 0.05\n"
       << "  set Positions = 0.451, 0.51; 0.549, 0.49\nend\n"
       << "subsection Contact\n  set Model = " << model << "\nend\n"

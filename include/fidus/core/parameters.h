@@ -107,11 +107,18 @@ namespace Fidus
     /// Solid share of a cell below which the multiplier leaves it out.
     double       sliver_threshold     = 0.;
     unsigned int max_uzawa_iterations = 50;
-    bool         reuse_multiplier     = true;
-    bool         release_shared_cells = false;
+    /// Fluid/Reuse multiplier, its auto resolved (true with rigid shared
+    /// cells).
+    bool reuse_multiplier = true;
+    /// Fluid/Shared cells = fluid, its auto resolved (fluid with a contact
+    /// model or the lubrication correction).
+    bool release_shared_cells = false;
     /// The held solid of each particle is a ball of radius
     /// a - solid_retraction * h_finest (Fluid/Solid retraction).
     double solid_retraction = 0.;
+    /// Width of the smoothed solid layer in finest cells (Fluid/Solid
+    /// smoothing); 0 samples the solid sharply.
+    double solid_smoothing = 0.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
     bool lubrication = false;

@@ -47,6 +47,29 @@ namespace Fidus
            const std::array<bool, dim>              &periodic = {},
            const double                              halo     = 0.);
 
+    /**
+     * Width w of the layer across each particle surface over which the
+     * solid fraction() falls from 1 to 0 (Fluid/Solid smoothing). With w = 0
+     * (the default) the solid is sharp: fraction() is 1 inside and 0
+     * outside. With w > 0 it falls linearly with the distance to the
+     * surface, so that what the fluid and the rigid projection see of a
+     * particle changes continuously as it moves across the mesh instead of
+     * jumping whenever a quadrature point crosses its surface. Queries then
+     * reach w/2 beyond each surface. Takes effect at the next reinit().
+     */
+    void
+    set_smoothing_width(const double w)
+    {
+      smoothing = w;
+    }
+
+    /// Width of the smoothed layer (0: sharp).
+    double
+    smoothing_width() const
+    {
+      return smoothing;
+    }
+
     /// Largest radius of all particles (0 if there are none).
     double
     max_radius() const
@@ -103,6 +126,22 @@ namespace Fidus
     particle_containing(const Point<dim>                &x,
                         const std::vector<unsigned int> &candidates) const;
 
+    /**
+     * Solid fraction at @p x among @p candidates, in [0, 1]: with a sharp
+     * solid 1 inside a particle and 0 outside, otherwise the linear ramp
+     * 1/2 - (|x - X| - a) / w of the nearest surface (see
+     * set_smoothing_width()). @p entry is set to the entry (see owner())
+     * that gives the largest fraction, or -1 where it is 0.
+     */
+    double
+    fraction(const Point<dim>                &x,
+             const std::vector<unsigned int> &candidates,
+             int                             &entry) const;
+
+    /// Solid fraction at @p x (see the other overload), searching all bins.
+    double
+    fraction(const Point<dim> &x, int &entry) const;
+
     /// Entry (see owner()) that contains @p x, or -1.
     int
     particle_containing(const Point<dim> &x) const;
@@ -117,6 +156,7 @@ namespace Fidus
 
   private:
     double largest_radius = 0.;
+    double smoothing      = 0.;
     unsigned int
     bin_index(const std::array<int, dim> &b) const;
 
