@@ -2,7 +2,7 @@
 // the extensional diagonal through the centre of the box in linear shear,
 // gap 2e-3 a cell (1/64) being 1.6e-2: point-symmetric, so U_1 = -U_0 and
 // omega_1 = omega_0 in both models.
-//  - 'rigid' (the seed's model, default): the cells between them must move
+//  - 'rigid' (the seed's model): the cells between them must move
 //    rigidly with both, so the pair moves as one rigid doublet: no relative
 //    velocity along the line of centres, each disc and the doublet turning
 //    at -g/2.
@@ -13,6 +13,9 @@
 //    g r / 2, which bounds it from above.
 // Exact 2D pair hydrodynamics give a separation rate of order
 // (gap/a)^(3/2) g r / 2, about 1e-2 of the undisturbed one here.
+// Then the default, 'auto': released with a contact model or the
+// lubrication correction, rigid with neither; 'Reuse multiplier = auto'
+// warm-starts only with rigid shared cells.
 
 #include "../fidus_test.h"
 
@@ -66,6 +69,31 @@ namespace
     check_range(name + ": omega_0 / (-g/2)", W0[2] / (-0.5 * g), 0.99, 1.01);
   }
 
+  /// The parsed (release shared cells, reuse multiplier) of a scene with
+  /// the given contact model, lubrication and Fluid entries ("" = default).
+  std::pair<bool, bool>
+  resolved(const std::string &contact,
+           const bool         lubrication,
+           const std::string &shared_cells,
+           const std::string &reuse)
+  {
+    std::ostringstream prm;
+    prm << "set Dimension = 2\nsubsection Fluid\n"
+        << "  set Lubrication correction = " << (lubrication ? "true" : "false")
+        << "\n"
+        << (shared_cells.empty() ?
+              "" :
+              "  set Shared cells = " + shared_cells + "\n")
+        << (reuse.empty() ? "" : "  set Reuse multiplier = " + reuse + "\n")
+        << "end\nsubsection Particles\n  set Radius = 0.05\n"
+        << "  set Positions = 0.3, 0.5; 0.7, 0.5\nend\n"
+        << (contact.empty() ?
+              "" :
+              "subsection Contact\n  set Model = " + contact + "\nend\n");
+    const Fidus::Parameters p = Fidus::read_parameters_from_string(prm.str());
+    return {p.release_shared_cells, p.reuse_multiplier};
+  }
+
   /// Separation rate along the line of centres over the undisturbed one.
   double
   separation(const Fidus::RunSummary &s)
@@ -105,5 +133,23 @@ main(int argc, char **argv)
               separation(fluid),
               0.1,
               1.);
+
+  // The defaults (auto). The default contact model is gluey.
+  const auto by_default = resolved("", false, "", "");
+  check_range("auto, gluey: released", by_default.first, 1, 1);
+  check_range("auto, gluey: no warm start", by_default.second, 0, 0);
+  const auto inelastic = resolved("inelastic", false, "", "");
+  check_range("auto, inelastic: released", inelastic.first, 1, 1);
+  const auto none = resolved("none", false, "", "");
+  check_range("auto, none: rigid", none.first, 0, 0);
+  check_range("auto, none: warm start", none.second, 1, 1);
+  const auto lubricated = resolved("none", true, "", "");
+  check_range("auto, none with lubrication: released", lubricated.first, 1, 1);
+  const auto pinned = resolved("gluey", false, "rigid", "");
+  check_range("rigid, gluey: rigid", pinned.first, 0, 0);
+  check_range("rigid, gluey: warm start", pinned.second, 1, 1);
+  const auto forced = resolved("none", false, "fluid", "true");
+  check_range("fluid, reuse true: released", forced.first, 1, 1);
+  check_range("fluid, reuse true: warm start", forced.second, 1, 1);
   return exit_code();
 }
