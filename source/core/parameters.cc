@@ -217,7 +217,7 @@ namespace Fidus
       if (range == "auto")
         {
           lubrication_range      = dim == 3 ? 0.3 : 2.;
-          lubrication_wall_range = dim == 3 ? 0.2 : 2.;
+          lubrication_wall_range = dim == 3 ? 0.2 : 0.33;
         }
       else
         {

@@ -189,12 +189,14 @@ namespace Fidus
         Patterns::Anything(),
         "Gap, in finest cell sizes, below which the lubrication correction "
         "acts and above which the mesh is taken to resolve the squeeze "
-        "flow, > 0. auto: 2 in 2D (where it keeps a lubricated pair from "
-        "overlapping at every level); in 3D 0.3 between particles and 0.2 "
-        "between a particle and a wall, where the mesh carries the squeeze "
-        "down to about that fraction of a cell (measured against exact "
-        "solutions in doc/lubrication.md). A number sets both; two numbers, "
-        "separated by a comma, set the particle pairs' and the walls'.");
+        "flow, > 0. auto: between particles 2 in 2D (where it keeps a "
+        "lubricated pair in shear from overlapping at every level) and 0.3 "
+        "in 3D; between a particle and a wall 0.33 in 2D and 0.2 in 3D. "
+        "The 3D values and the 2D wall's are the fraction of a cell down to "
+        "which the mesh carries the squeeze of a pushed particle (measured "
+        "against exact solutions in doc/lubrication.md). A number sets "
+        "both; two numbers, separated by a comma, set the particle pairs' "
+        "and the walls'.");
       prm.declare_entry(
         "Lubrication flow range",
         "auto",
