@@ -16,7 +16,9 @@
 # shared cells and no warm start, since a contact model is on);
 # LUBRICATION=true adds the sub-grid lubrication correction (default
 # false); RIGIDITY=<tolerance> (default 1e-2) and MAX_UZAWA=<n> (default 5)
-# set Fluid/Rigidity tolerance and Fluid/Maximum Uzawa iterations.
+# set Fluid/Rigidity tolerance and Fluid/Maximum Uzawa iterations;
+# INEXACT=<factor> (default 0) sets Fluid/Linear solver/Inexact Uzawa
+# factor.
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
 #          [strain, default 1] [N, default 24] [phi, default 0.25] \
 #          [max level, default 4] [time step, default 0.1]
@@ -69,6 +71,9 @@ subsection Fluid
   set Shared cells = ${SHARED_CELLS:-auto}
   set Reuse multiplier = ${REUSE:-auto}
   set Lubrication correction = ${LUBRICATION:-false}
+  subsection Linear solver
+    set Inexact Uzawa factor = ${INEXACT:-0}
+  end
 end
 subsection Particles
   set Radius = $a
