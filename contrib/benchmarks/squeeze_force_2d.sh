@@ -8,6 +8,8 @@
 # 'Particles/External force' (1 per unit length) pushes
 #   - pair: two equal discs towards each other along x,
 #   - wall: one disc towards the wall y = 0,
+#   - slide: one disc along the wall y = 0 (free to turn: the tangential
+#     lubrication terms),
 # in the closed unit square at rest (linear shear with Shear rate = 0), at
 # gaps h from GAPS (relative to the radius a), for each maximum level of
 # LEVELS. Printed, divided by the reference speed:
@@ -52,6 +54,8 @@ print('%.15f, 0.5; %.15f, 0.5' % (0.5 - s, 0.5 + s))")
 a, g = $a, $gap
 print('0.5, %.15f' % (a + g * a))")
     forces="0, -1"
+    # slide: the same disc pushed along the wall (free to turn).
+    [ "$case" = slide ] && forces="1, 0"
   fi
   cat > "$work/$name.prm" <<PRM
 set Dimension = 2
@@ -124,6 +128,10 @@ if case == "pair":   # approach speed of each disc: half the closing speed
     mesh = 0.5 * (p0[0][2] - p0[1][2])
     if p1:
         step = 0.5 * ((p0[1][0] - p0[0][0]) - (p1[1][0] - p1[0][0])) / dt
+elif case == "slide":  # speed along the wall
+    mesh = p0[0][2]
+    if p1:
+        step = (p1[0][0] - p0[0][0]) / dt
 else:                # speed towards the wall
     mesh = -p0[0][3]
     if p1:

@@ -470,6 +470,9 @@ namespace Fidus::Contact
       settings.flow_range >= 0. ? settings.flow_range : settings.range;
     const double h_w =
       settings.wall_range >= 0. ? settings.wall_range : settings.range;
+    const double h_wt = settings.tangential_wall_range >= 0. ?
+                          settings.tangential_wall_range :
+                          h_w;
 
     // A bond is kept only where the true resistance exceeds a resolved
     // one, i.e. where the mesh misses some of the squeeze. A wall gets the
@@ -477,7 +480,8 @@ namespace Fidus::Contact
     const auto make_bond = [&](LubricationBond &b,
                                const double     a_small,
                                const double     range,
-                               const double     flow_range) {
+                               const double     flow_range,
+                               const double     tangential_range) {
       const double floor = settings.roughness * a_small;
       if (b.gap < floor)
         ++stat.n_rough;
@@ -496,22 +500,24 @@ namespace Fidus::Contact
       b.r_resolved_force = resolved(range);
       if (settings.tangential)
         {
-          b.t_true     = tangential_resistance(dim,
+          b.t_true = tangential_resistance(dim,
                                            settings.viscosity,
                                            b.a_i,
                                            b.a_j,
                                            gap,
-                                           range);
-          b.t_resolved = settings.nothing_resolved ?
-                           0. :
-                           tangential_resistance(dim,
-                                                 settings.viscosity,
-                                                 b.a_i,
-                                                 b.a_j,
-                                                 std::max(gap, range),
-                                                 range);
+                                           tangential_range);
+          b.t_resolved =
+            settings.nothing_resolved ?
+              0. :
+              tangential_resistance(dim,
+                                    settings.viscosity,
+                                    b.a_i,
+                                    b.a_j,
+                                    std::max(gap, tangential_range),
+                                    tangential_range);
         }
-      return b.r_true > std::min(b.r_resolved, b.r_resolved_force);
+      return b.r_true > std::min(b.r_resolved, b.r_resolved_force) ||
+             (settings.tangential && b.t_true > b.t_resolved);
     };
 
     const double                  h_pairs = std::max(h_c, h_f);
@@ -531,7 +537,7 @@ namespace Fidus::Contact
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f))
+        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f, h_c))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -547,12 +553,12 @@ namespace Fidus::Contact
           b.a_i    = radii[i];
           b.length = wall.side * (positions[i][wall.axis] - wall.position);
           b.gap    = b.length - radii[i];
-          if (b.gap >= h_w)
+          if (b.gap >= std::max(h_w, h_wt))
             continue;
           b.n[wall.axis]             = -wall.side;
           b.wall_velocity            = wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
-          if (make_bond(b, radii[i], h_w, h_w))
+          if (make_bond(b, radii[i], h_w, h_w, h_wt))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;

@@ -232,6 +232,24 @@ namespace Fidus
           lubrication_range      = v[0];
           lubrication_wall_range = v.back();
         }
+      const std::string wall_tangential =
+        Utilities::trim(prm.get("Lubrication wall tangential range"));
+      if (wall_tangential == "auto")
+        lubrication_wall_tangential_range =
+          dim == 3 ? lubrication_wall_range : 1.;
+      else
+        {
+          const std::vector<double> v =
+            parse_numbers(wall_tangential,
+                          "Fluid/Lubrication wall tangential range");
+          if (v.size() != 1)
+            throw InputError(
+              "entry 'Fluid/Lubrication wall tangential range' has the value "
+              "'" +
+              wall_tangential +
+              "'; allowed: auto or one gap in finest cell sizes > 0");
+          lubrication_wall_tangential_range = v[0];
+        }
       const std::string flow_range =
         Utilities::trim(prm.get("Lubrication flow range"));
       if (flow_range == "auto")
@@ -790,6 +808,8 @@ namespace Fidus
     require_gap("Lubrication range", lubrication_range);
     require_gap("Lubrication range", lubrication_wall_range);
     require_gap("Lubrication flow range", lubrication_flow_range);
+    require_gap("Lubrication wall tangential range",
+                lubrication_wall_tangential_range);
 
     // The held solid, radius a - c h at the finest cell size h, must exist.
     if (fluid_model == FluidModel::fictitious_domain)

@@ -198,6 +198,17 @@ namespace Fidus
         "both; two numbers, separated by a comma, set the particle pairs' "
         "and the walls'.");
       prm.declare_entry(
+        "Lubrication wall tangential range",
+        "auto",
+        Patterns::Anything(),
+        "Gap, in finest cell sizes, down to which the mesh carries the "
+        "tangential resistance of a particle sliding along a wall, > 0: "
+        "below it the correction adds the tangential terms of the wall "
+        "gap. The mesh resolves sliding less far down than the squeeze, so "
+        "this may exceed the walls' 'Lubrication range'. auto: 1 in 2D, "
+        "measured on a disc pushed along a wall against a resolved mesh "
+        "(doc/lubrication.md); in 3D the walls' 'Lubrication range'.");
+      prm.declare_entry(
         "Lubrication flow range",
         "auto",
         Patterns::Anything(),

@@ -145,6 +145,9 @@ namespace Fidus
           parameters.lubrication_wall_range * parameters.finest_cell_size();
         ls.flow_range =
           parameters.lubrication_flow_range * parameters.finest_cell_size();
+        ls.tangential_wall_range =
+          parameters.lubrication_wall_tangential_range *
+          parameters.finest_cell_size();
         ls.roughness        = parameters.roughness;
         ls.nothing_resolved = !fictitious;
         ls.drag             = parameters.drag_coefficient;

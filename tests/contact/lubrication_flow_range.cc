@@ -16,6 +16,11 @@
 //    approach there, so u = u* (1e-12); with the flow it is corrected.
 // e. Without external forces the flow range alone acts: the answer of a
 //    single range h_f (flow_range < 0), 1e-12.
+// f. A particle sliding along a wall at a gap between the walls' squeeze
+//    range and their tangential range (tangential_wall_range): only the
+//    tangential terms act, so the normal velocity is the predicted one
+//    (1e-12) and the sliding is slowed; beyond both ranges nothing
+//    changes (1e-12).
 
 #include "test_tools.h"
 
@@ -134,6 +139,35 @@ main()
         corrected(dim, h, h_f, -1., speed(drive, h_f), 0., f_bond, change);
       check(D + "e. no external forces: the same as a single range h_f",
             std::abs(single - flow) < 1e-12 * flow);
+
+      // f. A particle above the wall y = 0, sliding along x.
+      const auto slide = [&](const double gap) {
+        LubricationSettings s;
+        s.dimension             = dim;
+        s.viscosity             = eta;
+        s.range                 = h_c;
+        s.wall_range            = h_c;
+        s.tangential_wall_range = h_f;
+        s.roughness             = 0.;
+        s.tangential            = true;
+        LubricationCorrection lub(s);
+        Wall                  wall;
+        wall.axis     = 1;
+        wall.position = 0.;
+        wall.side     = 1;
+        lub.set_walls({wall});
+        const std::vector<Vec3> x      = {{{0.5, a + gap, 0.}}};
+        const std::vector<Vec3> u_star = {{{0.3, -0.02, 0.}}};
+        std::vector<Vec3>       u;
+        lub.correct(x, {a}, u_star, u);
+        return u[0];
+      };
+      const Vec3 between = slide(h_mid), beyond = slide(2. * h_f);
+      check(D + "f. sliding between the wall's ranges: normal u = u*, "
+                "sliding slowed; beyond both: u = u*",
+            std::abs(between[1] + 0.02) < 1e-12 && between[0] < 0.3 &&
+              between[0] > 0. && std::abs(beyond[0] - 0.3) < 1e-12 &&
+              std::abs(beyond[1] + 0.02) < 1e-12);
     }
   return 0;
 }

@@ -32,6 +32,13 @@ namespace Fidus::Contact
     /// driven by the external forces (set_external_forces()) from range,
     /// the rest from flow_range.
     double flow_range = -1.;
+    /// Gap (length) down to which the mesh carries the tangential
+    /// resistance of a particle sliding along a wall; < 0: the same as
+    /// wall_range. The mesh resolves sliding less far down than the squeeze
+    /// (doc/lubrication.md, "Squeeze of a disc against a wall"), so wall
+    /// bonds reach out to the larger of the two, and a bond between them
+    /// corrects only the tangential terms.
+    double tangential_wall_range = -1.;
     /// Gaps below roughness * (smaller radius of the pair; the radius for a
     /// wall) count as that gap: the resistance stops growing there and the
     /// contact model takes over.

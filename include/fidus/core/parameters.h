@@ -130,6 +130,8 @@ namespace Fidus
     /// (Fluid/Lubrication flow range); 'auto': the pairs' range in 2D,
     /// 0.45 in 3D.
     double lubrication_flow_range = 2.;
+    /// Fluid/Lubrication wall tangential range, in finest cells.
+    double lubrication_wall_tangential_range = 1.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
     bool         lubrication_tangential     = true;
     double       linear_tolerance           = 1e-6;
