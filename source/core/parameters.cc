@@ -232,39 +232,25 @@ namespace Fidus
           lubrication_range      = v[0];
           lubrication_wall_range = v.back();
         }
-      const std::string wall_tangential =
-        Utilities::trim(prm.get("Lubrication wall tangential range"));
-      if (wall_tangential == "auto")
-        lubrication_wall_tangential_range =
-          dim == 3 ? lubrication_wall_range : 1.;
-      else
-        {
-          const std::vector<double> v =
-            parse_numbers(wall_tangential,
-                          "Fluid/Lubrication wall tangential range");
-          if (v.size() != 1)
-            throw InputError(
-              "entry 'Fluid/Lubrication wall tangential range' has the value "
-              "'" +
-              wall_tangential +
-              "'; allowed: auto or one gap in finest cell sizes > 0");
-          lubrication_wall_tangential_range = v[0];
-        }
-      const std::string flow_range =
-        Utilities::trim(prm.get("Lubrication flow range"));
-      if (flow_range == "auto")
-        lubrication_flow_range = dim == 3 ? 0.45 : lubrication_range;
-      else
-        {
-          const std::vector<double> v =
-            parse_numbers(flow_range, "Fluid/Lubrication flow range");
-          if (v.size() != 1)
-            throw InputError(
-              "entry 'Fluid/Lubrication flow range' has the value '" +
-              flow_range +
-              "'; allowed: auto or one gap in finest cell sizes > 0");
-          lubrication_flow_range = v[0];
-        }
+      // An entry that is 'auto' (then auto_value) or one gap in cells.
+      const auto gap_or_auto = [&](const std::string &entry,
+                                   const double       auto_value) {
+        const std::string text = Utilities::trim(prm.get(entry));
+        if (text == "auto")
+          return auto_value;
+        const std::vector<double> v = parse_numbers(text, "Fluid/" + entry);
+        if (v.size() != 1)
+          throw InputError("entry 'Fluid/" + entry + "' has the value '" +
+                           text +
+                           "'; allowed: auto or one gap in finest cell "
+                           "sizes > 0");
+        return v[0];
+      };
+      lubrication_wall_tangential_range =
+        gap_or_auto("Lubrication wall tangential range",
+                    dim == 3 ? lubrication_wall_range : 1.);
+      lubrication_flow_range = gap_or_auto("Lubrication flow range",
+                                           dim == 3 ? 0.45 : lubrication_range);
       lubrication_tangential = prm.get_bool("Lubrication tangential terms");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");

@@ -339,13 +339,7 @@ namespace Fidus
                                0. :
                                solid.fraction(points[q], candidates, entry);
         meets_solid |= phi > 0.;
-        // A smoothed solid (Solid smoothing) mixes the two viscosities
-        // arithmetically, as the multiplier's load is weighted: the
-        // penalty and the multiplier then act on the same weighted strain.
-        eta[q] =
-          shared_cell || phi == 0. ? eta_f :
-          phi == 1.                ? settings.penalty_factor * eta_f :
-                      eta_f * (1. + (settings.penalty_factor - 1.) * phi);
+        eta[q] = shared_cell ? eta_f : solid_viscosity(eta_f, phi);
       }
     return meets_solid;
   }

@@ -70,7 +70,6 @@ namespace Fidus
     const auto            &settings    = solver.get_settings();
     const MPI_Comm         comm        = dof_handler.get_communicator();
     const double           eta_f       = settings.viscosity;
-    const double           eta_s       = settings.penalty_factor * eta_f;
     const auto            &shared      = solver.get_shared_cells();
     const auto            &solution    = solver.get_solution();
     const auto            &multiplier  = solver.get_multiplier();
@@ -164,7 +163,7 @@ namespace Fidus
             // As the assembly mixes a smoothed solid's viscosity and
             // weighs its multiplier (phi = 1 or 0 for a sharp solid).
             const double eta =
-              inside && held ? eta_f + phi * (eta_s - eta_f) : eta_f;
+              held ? solver.solid_viscosity(eta_f, phi) : eta_f;
             sigma[q] = 2. * eta * e_u[q];
             for (unsigned int d = 0; d < dim; ++d)
               sigma[q][d][d] -= p[q];

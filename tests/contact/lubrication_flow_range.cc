@@ -36,6 +36,21 @@ namespace
 {
   constexpr double eta = 1.3, a = 0.1;
 
+  /// The settings of every case: exact squeeze (no roughness), with the
+  /// tangential terms.
+  LubricationSettings
+  settings(const unsigned dim, const double h_c, const double h_f)
+  {
+    LubricationSettings s;
+    s.dimension  = dim;
+    s.viscosity  = eta;
+    s.range      = h_c;
+    s.flow_range = h_f;
+    s.roughness  = 0.;
+    s.tangential = true;
+    return s;
+  }
+
   double
   resistance(const unsigned dim, const double gap)
   {
@@ -56,14 +71,7 @@ namespace
             double        &bond_force,
             double        &velocity_change)
   {
-    LubricationSettings s;
-    s.dimension  = dim;
-    s.viscosity  = eta;
-    s.range      = h_c;
-    s.flow_range = h_f;
-    s.roughness  = 0.;
-    s.tangential = true;
-    LubricationCorrection   lub(s);
+    LubricationCorrection   lub(settings(dim, h_c, h_f));
     const std::vector<Vec3> x = {{{0.3, 0.4, 0.}},
                                  {{0.3 + 2 * a + h, 0.4, 0.}}};
     if (force != 0.)
@@ -142,14 +150,9 @@ main()
 
       // f. A particle above the wall y = 0, sliding along x.
       const auto slide = [&](const double gap) {
-        LubricationSettings s;
-        s.dimension             = dim;
-        s.viscosity             = eta;
-        s.range                 = h_c;
+        LubricationSettings s   = settings(dim, h_c, -1.);
         s.wall_range            = h_c;
         s.tangential_wall_range = h_f;
-        s.roughness             = 0.;
-        s.tangential            = true;
         LubricationCorrection lub(s);
         Wall                  wall;
         wall.axis     = 1;

@@ -195,6 +195,23 @@ namespace Fidus
     }
 
     /**
+     * The viscosity at a point of solid fraction @p phi (SolidIndicator::
+     * fraction()) where the fluid's is @p eta_f: eta_f outside, r eta_f
+     * inside, and between them, in a smoothed solid's layer, the
+     * arithmetic mix eta_f (1 + (r - 1) phi), as the multiplier's load is
+     * weighted by phi: the penalty and the multiplier then act on the same
+     * weighted strain. The assembly, the multigrid levels and the stress
+     * all use it.
+     */
+    double
+    solid_viscosity(const double eta_f, const double phi) const
+    {
+      return phi == 0. ? eta_f :
+             phi == 1. ? settings.penalty_factor * eta_f :
+                         eta_f * (1. + (settings.penalty_factor - 1.) * phi);
+    }
+
+    /**
      * The hanging-node and periodicity constraints of the current mesh,
      * without the imposed velocity (closed, on the locally relevant DoFs):
      * the conforming space, for residuals at DoFs with imposed velocity.

@@ -63,13 +63,6 @@ namespace Fidus
       smoothing = w;
     }
 
-    /// Width of the smoothed layer (0: sharp).
-    double
-    smoothing_width() const
-    {
-      return smoothing;
-    }
-
     /// Largest radius of all particles (0 if there are none).
     double
     max_radius() const
