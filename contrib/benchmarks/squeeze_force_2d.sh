@@ -10,6 +10,9 @@
 #   - wall: one disc towards the wall y = 0,
 #   - slide: one disc along the wall y = 0 (free to turn: the tangential
 #     lubrication terms),
+#   - pairslide: the two discs of 'pair' pushed past each other along y
+#     (forces (0, 1) and (0, -1), free to turn: the pairs' tangential
+#     terms; the speed is half the relative sliding speed),
 # in the closed unit square at rest (linear shear with Shear rate = 0), at
 # gaps h from GAPS (relative to the radius a), for each maximum level of
 # LEVELS. Printed, divided by the reference speed:
@@ -43,12 +46,13 @@ run() {
   # Without the correction only the rigid velocity of step 0 is used.
   local end_time="$dt"
   [ "$lubrication" = false ] && end_time=0
-  if [ "$case" = pair ]; then
+  if [ "$case" = pair ] || [ "$case" = pairslide ]; then
     positions=$(/usr/bin/python3 -c "
 a, g = $a, $gap
 s = a + 0.5 * g * a
 print('%.15f, 0.5; %.15f, 0.5' % (0.5 - s, 0.5 + s))")
     forces="1, 0; -1, 0"
+    [ "$case" = pairslide ] && forces="0, 1; 0, -1"
   else
     positions=$(/usr/bin/python3 -c "
 a, g = $a, $gap
@@ -128,6 +132,10 @@ if case == "pair":   # approach speed of each disc: half the closing speed
     mesh = 0.5 * (p0[0][2] - p0[1][2])
     if p1:
         step = 0.5 * ((p0[1][0] - p0[0][0]) - (p1[1][0] - p1[0][0])) / dt
+elif case == "pairslide":  # half the relative sliding speed
+    mesh = 0.5 * (p0[0][3] - p0[1][3])
+    if p1:
+        step = 0.5 * ((p1[0][1] - p1[1][1]) - (p0[0][1] - p0[1][1])) / dt
 elif case == "slide":  # speed along the wall
     mesh = p0[0][2]
     if p1:

@@ -470,6 +470,8 @@ namespace Fidus::Contact
       settings.flow_range >= 0. ? settings.flow_range : settings.range;
     const double h_w =
       settings.wall_range >= 0. ? settings.wall_range : settings.range;
+    const double h_t =
+      settings.tangential_range >= 0. ? settings.tangential_range : h_c;
     const double h_wt = settings.tangential_wall_range >= 0. ?
                           settings.tangential_wall_range :
                           h_w;
@@ -520,7 +522,8 @@ namespace Fidus::Contact
              (settings.tangential && b.t_true > b.t_resolved);
     };
 
-    const double                  h_pairs = std::max(h_c, h_f);
+    const double h_pairs =
+      std::max(std::max(h_c, h_f), settings.tangential ? h_t : 0.);
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, h_pairs, pairs);
     for (const auto &[i, j] : pairs)
@@ -537,7 +540,7 @@ namespace Fidus::Contact
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f, h_c))
+        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f, h_t))
           {
             bond.push_back(b);
             ++stat.n_pairs;

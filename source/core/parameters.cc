@@ -213,25 +213,32 @@ namespace Fidus
       solid_retraction         = prm.get_double("Solid retraction");
       solid_smoothing          = prm.get_double("Solid smoothing");
       lubrication              = prm.get_bool("Lubrication correction");
-      const std::string range  = Utilities::trim(prm.get("Lubrication range"));
-      if (range == "auto")
-        {
-          lubrication_range      = dim == 3 ? 0.3 : 2.;
-          lubrication_wall_range = dim == 3 ? 0.2 : 0.33;
-        }
-      else
-        {
-          const std::vector<double> v =
-            parse_numbers(range, "Fluid/Lubrication range");
-          if (v.empty() || v.size() > 2)
-            throw InputError("entry 'Fluid/Lubrication range' has the value '" +
-                             range +
-                             "'; allowed: auto, one gap in finest cell sizes "
-                             "> 0 (particle pairs and walls), or two "
-                             "(particle pairs, walls)");
-          lubrication_range      = v[0];
-          lubrication_wall_range = v.back();
-        }
+      // An entry that is 'auto' (then {auto_pairs, auto_walls}), one gap
+      // in cells for both, or two: the particle pairs' and the walls'.
+      const auto pair_and_wall_ranges = [&](const std::string &entry,
+                                            const double       auto_pairs,
+                                            const double       auto_walls) {
+        const std::string text = Utilities::trim(prm.get(entry));
+        if (text == "auto")
+          return std::vector<double>{auto_pairs, auto_walls};
+        const std::vector<double> v = parse_numbers(text, "Fluid/" + entry);
+        if (v.empty() || v.size() > 2)
+          throw InputError("entry 'Fluid/" + entry + "' has the value '" +
+                           text +
+                           "'; allowed: auto, one gap in finest cell sizes "
+                           "> 0 (particle pairs and walls), or two "
+                           "(particle pairs, walls)");
+        return std::vector<double>{v[0], v.back()};
+      };
+      // The 3D values and the 2D walls' and pairs' squeeze ranges are the
+      // fraction of a cell down to which the mesh carries a pushed
+      // particle's squeeze (doc/lubrication.md).
+      const std::vector<double> squeeze =
+        pair_and_wall_ranges("Lubrication range",
+                             dim == 3 ? 0.3 : 0.65,
+                             dim == 3 ? 0.2 : 0.33);
+      lubrication_range      = squeeze[0];
+      lubrication_wall_range = squeeze[1];
       // An entry that is 'auto' (then auto_value) or one gap in cells.
       const auto gap_or_auto = [&](const std::string &entry,
                                    const double       auto_value) {
@@ -246,11 +253,16 @@ namespace Fidus
                            "sizes > 0");
         return v[0];
       };
-      lubrication_wall_tangential_range =
-        gap_or_auto("Lubrication wall tangential range",
-                    dim == 3 ? lubrication_wall_range : 1.);
-      lubrication_flow_range = gap_or_auto("Lubrication flow range",
-                                           dim == 3 ? 0.45 : lubrication_range);
+      const std::vector<double> tangential =
+        pair_and_wall_ranges("Lubrication tangential range",
+                             dim == 3 ? lubrication_range : 2.,
+                             dim == 3 ? lubrication_wall_range : 1.);
+      lubrication_tangential_range      = tangential[0];
+      lubrication_wall_tangential_range = tangential[1];
+      // 2 in 2D: the range with which a lubricated pair in shear does not
+      // overlap at any level (doc/lubrication.md).
+      lubrication_flow_range =
+        gap_or_auto("Lubrication flow range", dim == 3 ? 0.45 : 2.);
       lubrication_tangential = prm.get_bool("Lubrication tangential terms");
       prm.enter_subsection("Linear solver");
       linear_tolerance          = prm.get_double("Tolerance");
@@ -794,7 +806,8 @@ namespace Fidus
     require_gap("Lubrication range", lubrication_range);
     require_gap("Lubrication range", lubrication_wall_range);
     require_gap("Lubrication flow range", lubrication_flow_range);
-    require_gap("Lubrication wall tangential range",
+    require_gap("Lubrication tangential range", lubrication_tangential_range);
+    require_gap("Lubrication tangential range",
                 lubrication_wall_tangential_range);
 
     // The held solid, radius a - c h at the finest cell size h, must exist.

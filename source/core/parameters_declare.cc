@@ -189,25 +189,26 @@ namespace Fidus
         Patterns::Anything(),
         "Gap, in finest cell sizes, below which the lubrication correction "
         "acts and above which the mesh is taken to resolve the squeeze "
-        "flow, > 0. auto: between particles 2 in 2D (where it keeps a "
-        "lubricated pair in shear from overlapping at every level) and 0.3 "
-        "in 3D; between a particle and a wall 0.33 in 2D and 0.2 in 3D. "
-        "The 3D values and the 2D wall's are the fraction of a cell down to "
-        "which the mesh carries the squeeze of a pushed particle (measured "
-        "against exact solutions in doc/lubrication.md). A number sets "
-        "both; two numbers, separated by a comma, set the particle pairs' "
-        "and the walls'.");
+        "flow, > 0. auto: between particles 0.65 in 2D and 0.3 in 3D; "
+        "between a particle and a wall 0.33 in 2D and 0.2 in 3D: the "
+        "fraction of a cell down to which the mesh carries the squeeze of "
+        "a pushed particle (measured against exact solutions and resolved "
+        "meshes in doc/lubrication.md). A number sets both; two numbers, "
+        "separated by a comma, set the particle pairs' and the walls'.");
       prm.declare_entry(
-        "Lubrication wall tangential range",
+        "Lubrication tangential range",
         "auto",
         Patterns::Anything(),
         "Gap, in finest cell sizes, down to which the mesh carries the "
-        "tangential resistance of a particle sliding along a wall, > 0: "
-        "below it the correction adds the tangential terms of the wall "
-        "gap. The mesh resolves sliding less far down than the squeeze, so "
-        "this may exceed the walls' 'Lubrication range'. auto: 1 in 2D, "
-        "measured on a disc pushed along a wall against a resolved mesh "
-        "(doc/lubrication.md); in 3D the walls' 'Lubrication range'.");
+        "tangential resistance of two surfaces sliding past each other, "
+        "> 0: below it the correction adds the tangential terms of the gap. "
+        "The mesh resolves sliding less far down than the squeeze, so this "
+        "may exceed 'Lubrication range'. auto: in 2D PAIRS2D between "
+        "particles and 1 between a particle and a wall, measured on discs "
+        "pushed past each other and along a wall against a resolved mesh "
+        "(doc/lubrication.md); in 3D the squeeze's 'Lubrication range'. A "
+        "number sets both; two numbers, separated by a comma, set the "
+        "particle pairs' and the walls'.");
       prm.declare_entry(
         "Lubrication flow range",
         "auto",
@@ -218,8 +219,9 @@ namespace Fidus
         "than a force-driven one, so the correction treats the part of the "
         "fluid's velocities that 'Particles/External force' drives with "
         "'Lubrication range' and the rest with this one. auto: 0.45 in 3D, "
-        "measured on two spheres held in shear against Batchelor & Green "
-        "(doc/lubrication.md); in 2D the pairs' 'Lubrication range'.");
+        "measured on two spheres held in shear against Batchelor & Green, "
+        "and 2 in 2D, where it keeps a lubricated pair in shear from "
+        "overlapping at every level (doc/lubrication.md).");
       prm.declare_entry(
         "Shared cells",
         "auto",

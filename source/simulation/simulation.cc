@@ -145,6 +145,8 @@ namespace Fidus
           parameters.lubrication_wall_range * parameters.finest_cell_size();
         ls.flow_range =
           parameters.lubrication_flow_range * parameters.finest_cell_size();
+        ls.tangential_range = parameters.lubrication_tangential_range *
+                              parameters.finest_cell_size();
         ls.tangential_wall_range =
           parameters.lubrication_wall_tangential_range *
           parameters.finest_cell_size();

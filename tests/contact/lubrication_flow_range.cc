@@ -21,9 +21,14 @@
 //    tangential terms act, so the normal velocity is the predicted one
 //    (1e-12) and the sliding is slowed; beyond both ranges nothing
 //    changes (1e-12).
+// g. The same for two particles sliding past each other at a gap between
+//    the pairs' squeeze range and their tangential range (tangential_range):
+//    the closing speed is the predicted one, the relative sliding is
+//    slowed, and beyond both ranges nothing changes (1e-12).
 
 #include "test_tools.h"
 
+#include <array>
 #include <cmath>
 #include <fidus/contact/lubrication_correction.h>
 #include <iostream>
@@ -171,6 +176,26 @@ main()
             std::abs(between[1] + 0.02) < 1e-12 && between[0] < 0.3 &&
               between[0] > 0. && std::abs(beyond[0] - 0.3) < 1e-12 &&
               std::abs(beyond[1] + 0.02) < 1e-12);
+
+      // g. A pair along x, closing at 0.04 and sliding along y at 0.3.
+      const auto pass = [&](const double gap) {
+        LubricationSettings s = settings(dim, h_c, -1.);
+        s.tangential_range    = h_f;
+        LubricationCorrection   lub(s);
+        const std::vector<Vec3> x      = {{{0.3, 0.4, 0.}},
+                                          {{0.3 + 2 * a + gap, 0.4, 0.}}};
+        const std::vector<Vec3> u_star = {{{0.02, 0.15, 0.}},
+                                          {{-0.02, -0.15, 0.}}};
+        std::vector<Vec3>       u;
+        lub.correct(x, {a, a}, u_star, u);
+        return std::array<double, 2>{{u[0][0] - u[1][0], u[0][1] - u[1][1]}};
+      };
+      const auto pass_between = pass(h_mid), pass_beyond = pass(2. * h_f);
+      check(D + "g. pair sliding between its ranges: closing u = u*, "
+                "sliding slowed; beyond both: u = u*",
+            std::abs(pass_between[0] - 0.04) < 1e-12 && pass_between[1] < 0.3 &&
+              pass_between[1] > 0. && std::abs(pass_beyond[0] - 0.04) < 1e-12 &&
+              std::abs(pass_beyond[1] - 0.3) < 1e-12);
     }
   return 0;
 }

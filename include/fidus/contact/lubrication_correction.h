@@ -33,6 +33,11 @@ namespace Fidus::Contact
     /// the rest from flow_range.
     double flow_range = -1.;
     /// Gap (length) down to which the mesh carries the tangential
+    /// resistance of two particles sliding past each other; < 0: the same
+    /// as range. Pair bonds reach out to the largest of range, flow_range
+    /// and this one.
+    double tangential_range = -1.;
+    /// Gap (length) down to which the mesh carries the tangential
     /// resistance of a particle sliding along a wall; < 0: the same as
     /// wall_range. The mesh resolves sliding less far down than the squeeze
     /// (doc/lubrication.md, "Squeeze of a disc against a wall"), so wall

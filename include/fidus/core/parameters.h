@@ -122,15 +122,16 @@ namespace Fidus
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
     bool lubrication = false;
-    /// Ranges of particle pairs and of particle-wall gaps; 'auto': 2 and 2
-    /// in 2D, 0.3 and 0.2 in 3D.
+    /// Ranges of particle pairs and of particle-wall gaps; 'auto': 0.65 and
+    /// 0.33 in 2D, 0.3 and 0.2 in 3D.
     double lubrication_range      = 2.;
     double lubrication_wall_range = 2.;
     /// The pairs' range in the fluid solve's response to the flow
-    /// (Fluid/Lubrication flow range); 'auto': the pairs' range in 2D,
-    /// 0.45 in 3D.
+    /// (Fluid/Lubrication flow range); 'auto': 2 in 2D, 0.45 in 3D.
     double lubrication_flow_range = 2.;
-    /// Fluid/Lubrication wall tangential range, in finest cells.
+    /// Fluid/Lubrication tangential range of particle pairs and of
+    /// particle-wall gaps, in finest cells.
+    double lubrication_tangential_range      = 2.;
     double lubrication_wall_tangential_range = 1.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
     bool         lubrication_tangential     = true;
