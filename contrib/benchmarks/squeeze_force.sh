@@ -18,7 +18,8 @@
 # 3.2 and 6.4 cells), GAPS (default "0.5 0.2 0.1 0.05 0.02 0.01"), CASES
 # (default "pair wall"), DT (default 1e-4), RETRACTION (Solid retraction,
 # default 0), RANGE (Lubrication range, default auto), RIGID_TOL (Rigid velocity
-# tolerance, default 1e-5), NP (MPI ranks per run,
+# tolerance, default 1e-5), ROUGHNESS (Contact/Roughness, default
+# 5e-3, fidus's; gaps below it count as it), NP (MPI ranks per run,
 # default 1), WORK (keep the runs there), FIDUS.
 # Usage: contrib/benchmarks/squeeze_force.sh
 set -euo pipefail
@@ -76,6 +77,7 @@ end
 subsection Contact
   set Model = none
   set Walls = true
+  set Roughness = ${ROUGHNESS:-5e-3}
 end
 subsection Time stepping
   set End time = $dt

@@ -24,8 +24,10 @@
 # 12.8 to 51 cells), REF_LEVEL (default 11), GAPS (default "0.2 0.1 0.05
 # 0.02"), CASES (default "pair wall"), DT (default 1e-4), RETRACTIONS
 # (Solid retraction of the LEVELS runs, default "0 0.3"; the references
-# have none), RANGE (Lubrication range, default auto),
-# RIGID_TOL (Rigid velocity tolerance, default 1e-5), NP (MPI ranks per
+# have none), RANGE (Lubrication range, default auto), TANGENTIAL_RANGE
+# (Lubrication tangential range, default auto),
+# RIGID_TOL (Rigid velocity tolerance, default 1e-5), ROUGHNESS (Contact/Roughness, default
+# 5e-3, fidus's; gaps below it count as it), NP (MPI ranks per
 # run, default 1), WORK (keep the runs there), FIDUS.
 # Usage: contrib/benchmarks/squeeze_force_2d.sh
 set -euo pipefail
@@ -78,6 +80,7 @@ subsection Fluid
   set Shared cells = fluid
   set Lubrication correction = $lubrication
   set Lubrication range = ${RANGE:-auto}
+  set Lubrication tangential range = ${TANGENTIAL_RANGE:-auto}
   subsection Linear solver
     set Tolerance = 1e-9
   end
@@ -90,6 +93,7 @@ end
 subsection Contact
   set Model = none
   set Walls = true
+  set Roughness = ${ROUGHNESS:-5e-3}
 end
 subsection Time stepping
   set End time = $end_time

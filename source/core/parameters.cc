@@ -255,7 +255,7 @@ namespace Fidus
       };
       const std::vector<double> tangential =
         pair_and_wall_ranges("Lubrication tangential range",
-                             dim == 3 ? lubrication_range : 2.,
+                             lubrication_range,
                              dim == 3 ? lubrication_wall_range : 1.);
       lubrication_tangential_range      = tangential[0];
       lubrication_wall_tangential_range = tangential[1];

@@ -202,12 +202,14 @@ namespace Fidus
         "Gap, in finest cell sizes, down to which the mesh carries the "
         "tangential resistance of two surfaces sliding past each other, "
         "> 0: below it the correction adds the tangential terms of the gap. "
-        "The mesh resolves sliding less far down than the squeeze, so this "
-        "may exceed 'Lubrication range'. auto: in 2D PAIRS2D between "
-        "particles and 1 between a particle and a wall, measured on discs "
-        "pushed past each other and along a wall against a resolved mesh "
-        "(doc/lubrication.md); in 3D the squeeze's 'Lubrication range'. A "
-        "number sets both; two numbers, separated by a comma, set the "
+        "Against a wall the mesh resolves sliding less far down than the "
+        "squeeze, so this may exceed 'Lubrication range'. auto: between "
+        "particles the pairs' "
+        "'Lubrication range'; between a particle and a wall 1 in 2D and the "
+        "walls' 'Lubrication range' in 3D. The 2D values were measured on "
+        "discs pushed past each other and along a wall against a resolved "
+        "mesh (doc/lubrication.md). A number sets both; two numbers, "
+        "separated by a comma, set the "
         "particle pairs' and the walls'.");
       prm.declare_entry(
         "Lubrication flow range",
