@@ -18,8 +18,9 @@
 # "0.5 0.2 0.1 0.05 0.02 0.01"), DT (default 1e-4), RETRACTION (Solid
 # retraction of the coarse runs, default 0), REF_RETRACTION (of the
 # reference, default 0.45: the cut-cell bias of the radius, doc/rheology.md),
-# RIGID_TOL (Rigid velocity tolerance, default 1e-5), WORK (keep the runs
-# there), FIDUS.
+# RIGID_TOL (Rigid velocity tolerance, default 1e-5), FLOW_RANGE
+# (Lubrication flow range of the corrected runs, default auto), WORK (keep
+# the runs there; finished runs found there are not run again), FIDUS.
 # Usage: contrib/benchmarks/squeeze_pair.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -53,6 +54,7 @@ subsection Fluid
   set Solid retraction = $retraction
   set Shared cells = fluid
   set Lubrication correction = $lub
+  set Lubrication flow range = ${FLOW_RANGE:-auto}
   subsection Linear solver
     set Tolerance = 1e-9
   end
@@ -79,6 +81,11 @@ subsection Output
   set Checkpoint wall interval = 0
 end
 PRM
+  # A finished run in WORK is kept (a study stopped half-way resumes, and
+  # the references can be copied into another WORK).
+  if [ -f "$work/$name.wall" ] && [ -f "$work/$name/particles.csv" ]; then
+    return 0
+  fi
   local start; start=$(date +%s.%N)
   if ! "$fidus" "$work/$name.prm" > "$work/$name.log" 2>&1; then
     echo "run $name failed:" >&2; tail -3 "$work/$name.log" >&2; return 1
