@@ -204,13 +204,12 @@ namespace Fidus
         "> 0: below it the correction adds the tangential terms of the gap. "
         "Against a wall the mesh resolves sliding less far down than the "
         "squeeze, so this may exceed 'Lubrication range'. auto: between "
-        "particles the pairs' "
-        "'Lubrication range'; between a particle and a wall 1 in 2D and the "
-        "walls' 'Lubrication range' in 3D. The 2D values were measured on "
-        "discs pushed past each other and along a wall against a resolved "
-        "mesh (doc/lubrication.md). A number sets both; two numbers, "
-        "separated by a comma, set the "
-        "particle pairs' and the walls'.");
+        "particles the pairs' 'Lubrication range'; between a particle and "
+        "a wall 1 in 2D and the walls' 'Lubrication range' in 3D. The 2D "
+        "values were measured on discs pushed past each other and along a "
+        "wall against a resolved mesh (doc/lubrication.md). A number sets "
+        "both; two numbers, separated by a comma, set the particle pairs' "
+        "and the walls'.");
       prm.declare_entry(
         "Lubrication flow range",
         "auto",
@@ -222,8 +221,9 @@ namespace Fidus
         "fluid's velocities that 'Particles/External force' drives with "
         "'Lubrication range' and the rest with this one. auto: 0.45 in 3D, "
         "measured on two spheres held in shear against Batchelor & Green, "
-        "and 2 in 2D, where it keeps a lubricated pair in shear from "
-        "overlapping at every level (doc/lubrication.md).");
+        "and 2 in 2D, chosen on a lubricated pair in shear, which it keeps "
+        "from overlapping at every level (two discs held in shear would "
+        "want 0.7-1; doc/lubrication.md says why it stays).");
       prm.declare_entry(
         "Shared cells",
         "auto",
