@@ -15,10 +15,9 @@
 //   the level-5 pair by more than twice.
 
 #include "../fidus_test.h"
+#include "pushed_discs.h"
 
 #include <cmath>
-#include <fidus/core/parameters.h>
-#include <fidus/simulation/simulation.h>
 
 using namespace FidusTest;
 
@@ -31,29 +30,12 @@ namespace
   std::pair<double, double>
   run(const double h, const unsigned int level)
   {
-    const double       s = a + 0.5 * h;
-    std::ostringstream prm;
-    prm.precision(17);
-    prm << "set Dimension = 2\nset Output directory = run_output\n"
-        << "subsection Domain\n  set Boundary condition = linear shear\n"
-        << "  set Shear rate = 0\nend\n"
-        << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
-        << "  set Rigid velocity tolerance = 1e-5\n"
-        << "  set Maximum Uzawa iterations = 30\n"
-        << "  set Lubrication correction = true\n"
-        << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\n"
-        << "end\n"
-        << "subsection Particles\n  set Radius = " << a << "\n"
-        << "  set Positions = " << 0.5 - s << ", 0.5; " << 0.5 + s << ", 0.5\n"
-        << "  set External force = 1, 0; -1, 0\nend\n"
-        << "subsection Contact\n  set Model = none\n  set Walls = true\nend\n"
-        << "subsection Time stepping\n  set End time = " << dt << "\n"
-        << "  set Time step = " << dt << "\nend\n"
-        << "subsection Mesh refinement\n"
-        << "  set Initial global refinement = 3\n  set Minimum level = 3\n"
-        << "  set Maximum level = " << level << "\nend\n"
-        << "subsection Output\n  set Verbosity = quiet\nend\n";
-    Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+    const double s = a + 0.5 * h;
+    run_pushed_discs(a,
+                     dt,
+                     level,
+                     {{0.5 - s, 0.5}, {0.5 + s, 0.5}},
+                     {{1., 0.}, {-1., 0.}});
     // Rows: particle 0 and 1 at step 0, then at step 1.
     const auto x  = csv_column("run_output/particles.csv", "x");
     const auto ux = csv_column("run_output/particles.csv", "ux");

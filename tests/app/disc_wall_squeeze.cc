@@ -22,10 +22,9 @@
 //   and 1.015).
 
 #include "../fidus_test.h"
+#include "pushed_discs.h"
 
 #include <cmath>
-#include <fidus/core/parameters.h>
-#include <fidus/simulation/simulation.h>
 
 using namespace FidusTest;
 
@@ -45,28 +44,7 @@ namespace
   std::pair<double, double>
   run(const double h)
   {
-    std::ostringstream prm;
-    prm.precision(17);
-    prm << "set Dimension = 2\nset Output directory = run_output\n"
-        << "subsection Domain\n  set Boundary condition = linear shear\n"
-        << "  set Shear rate = 0\nend\n"
-        << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
-        << "  set Rigid velocity tolerance = 1e-5\n"
-        << "  set Maximum Uzawa iterations = 30\n"
-        << "  set Lubrication correction = true\n"
-        << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\n"
-        << "end\n"
-        << "subsection Particles\n  set Radius = " << a << "\n"
-        << "  set Positions = 0.5, " << a + h << "\n"
-        << "  set External force = 0, -1\nend\n"
-        << "subsection Contact\n  set Model = none\n  set Walls = true\nend\n"
-        << "subsection Time stepping\n  set End time = " << dt << "\n"
-        << "  set Time step = " << dt << "\nend\n"
-        << "subsection Mesh refinement\n"
-        << "  set Initial global refinement = 3\n  set Minimum level = 3\n"
-        << "  set Maximum level = 5\nend\n"
-        << "subsection Output\n  set Verbosity = quiet\nend\n";
-    Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+    run_pushed_discs(a, dt, 5, {{0.5, a + h}}, {{0., -1.}});
     const auto y  = csv_column("run_output/particles.csv", "y");
     const auto uy = csv_column("run_output/particles.csv", "uy");
     return {-uy.front(), (y.front() - y.back()) / dt};
