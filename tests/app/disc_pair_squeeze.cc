@@ -13,6 +13,8 @@
 //   of the reference, 5.5 % apart; with the earlier pairs' range of 2
 //   cells they were 0.314 and 0.246, 24 % apart), and the correction slows
 //   the level-5 pair by more than twice.
+// And the auto rule of the 2D ranges: a pair's tangential terms take the
+// pairs' squeeze range, also one set by hand, and the flow range stays 2.
 
 #include "../fidus_test.h"
 #include "pushed_discs.h"
@@ -48,6 +50,22 @@ main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   redirect_warnings();
+
+  // The 2D ranges' auto rule: the tangential terms of a pair follow the
+  // pairs' squeeze range, also one the user sets; the flow range does not.
+  const Fidus::Parameters p = Fidus::read_parameters_from_string(
+    "set Dimension = 2\nsubsection Fluid\n"
+    "  set Lubrication correction = true\n"
+    "  set Lubrication range = 0.4, 0.25\nend\n");
+  check_range("pairs' tangential range = pairs' range (0.4)",
+              p.lubrication_tangential_range,
+              0.4,
+              0.4);
+  check_range("walls' tangential range, auto in 2D (1)",
+              p.lubrication_wall_tangential_range,
+              1.,
+              1.);
+  check_range("flow range, auto in 2D (2)", p.lubrication_flow_range, 2., 2.);
 
   const double h                   = 0.05 * a;
   const auto [mesh_4, corrected_4] = run(h, 4);
