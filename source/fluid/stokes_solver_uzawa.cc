@@ -1,6 +1,7 @@
-// The Uzawa loop of StokesSolver (augmented Lagrangian for rigidity) and
-// the FGMRES solve of each of its iterations; the rest of the class (DoFs,
-// constraints, assembly, errors) is in stokes_solver.cc.
+// StokesSolver::solve(): the solver as the problem of the Uzawa loop
+// (UzawaLoop, augmented Lagrangian for rigidity), the strain left in the
+// solid, and the FGMRES solve of each iteration; the rest of the class
+// (DoFs, constraints, assembly, errors) is in stokes_solver.cc.
 #include "stokes_solver_preconditioners.h"
 
 #include <cmath>
@@ -23,7 +24,7 @@
 namespace Fidus
 {
   template <int dim>
-  typename StokesSolver<dim>::RigidityResidual
+  UzawaProblem::Residual
   StokesSolver<dim>::rigidity_residual(const SolidIndicator<dim> &solid) const
   {
     FEValues<dim>                        fe_values(fe,
@@ -68,7 +69,7 @@ namespace Fidus
             }
         }
     Utilities::MPI::sum(sums, mpi_communicator, sums);
-    RigidityResidual r;
+    UzawaProblem::Residual r;
     if (!(sums[2] > 0))
       return r;
     r.held       = std::sqrt(sums[0] / sums[2]);
@@ -85,47 +86,80 @@ namespace Fidus
 
 
 
+  /**
+   * StokesSolver as the problem of the Uzawa loop: the multiplier's load,
+   * one FGMRES solve, the strain left in the solid, the rigid motions and
+   * the plain Uzawa update, on the solver's own vectors.
+   */
   template <int dim>
-  void
-  StokesSolver<dim>::record_residual(Statistics             &stats,
-                                     const RigidityResidual &residual) const
+  class StokesSolver<dim>::Uzawa : public UzawaProblem
   {
-    stats.rigidity_residual =
-      settings.rigidity_per_particle ? residual.particle : residual.held;
-    stats.particle_rigidity_residual = residual.particle;
-    stats.shared_residual            = residual.released;
-  }
+  public:
+    Uzawa(StokesSolver<dim>         &solver,
+          const SolidIndicator<dim> &solid,
+          Statistics                &stats)
+      : solver(solver)
+      , solid(solid)
+      , stats(stats)
+      , update(solver.distributed_multiplier.block(0))
+      , rho(2. * (solver.settings.penalty_factor - 1.) *
+            solver.settings.viscosity)
+    {}
 
+    void
+    load_multiplier() override
+    {
+      solver.assemble_multiplier_rhs(solid);
+    }
 
+    unsigned int
+    solve_velocity(const double tolerance) override
+    {
+      return solver.solve_linear(stats, tolerance);
+    }
 
-  template <int dim>
-  double
-  StokesSolver<dim>::rigid_velocity_change(
-    const std::vector<RigidMotion> &previous,
-    const std::vector<RigidMotion> &current,
-    const SolidIndicator<dim>      &solid,
-    const double                    shear_rate,
-    const double                    forced_velocity)
-  {
-    if (!(shear_rate > 0.) && !(forced_velocity > 0.))
-      return 0.;
-    double change = 0.;
-    for (unsigned int i = 0; i < current.size(); ++i)
-      {
-        double du2 = 0., dw2 = 0.;
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            du2 +=
-              std::pow(current[i].velocity[d] - previous[i].velocity[d], 2);
-            dw2 += std::pow(current[i].omega[d] - previous[i].omega[d], 2);
-          }
-        const double a       = solid.radius(i);
-        const double u_scale = std::max(shear_rate * a, forced_velocity);
-        change               = std::max(
-          {change, std::sqrt(du2) / u_scale, std::sqrt(dw2) * a / u_scale});
-      }
-    return change;
-  }
+    Residual
+    rigidity_residual() const override
+    {
+      return solver.rigidity_residual(solid);
+    }
+
+    std::vector<RigidMotion>
+    rigid_motions() const override
+    {
+      return compute_rigid_motions(solver.dof_handler,
+                                   solver.cells,
+                                   solver.solution,
+                                   solid,
+                                   solver.quadrature,
+                                   &solver.shared);
+    }
+
+    double
+    particle_radius(const unsigned int i) const override
+    {
+      return solid.radius(i);
+    }
+
+    void
+    update_multiplier() override
+    {
+      // lambda += rho M u, in place, on the held solid's DoFs only.
+      TrilinosWrappers::MPI::Vector &x = solver.distributed_multiplier.block(0);
+      update                           = solver.distributed_solution.block(0);
+      update.scale(solver.solid_mask.block(0));
+      x.add(rho, update);
+      solver.multiplier = solver.distributed_multiplier;
+    }
+
+  private:
+    StokesSolver<dim>         &solver;
+    const SolidIndicator<dim> &solid;
+    Statistics                &stats;
+    /// The masked velocity of the update, allocated once per solve.
+    TrilinosWrappers::MPI::Vector update;
+    const double                  rho;
+  };
 
 
 
@@ -284,7 +318,6 @@ namespace Fidus
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();
-    const double rho = 2. * (settings.penalty_factor - 1.) * settings.viscosity;
     if (!multiplier_valid || !settings.reuse_multiplier)
       {
         distributed_multiplier = 0;
@@ -312,158 +345,36 @@ namespace Fidus
       }
     else
       {
-        stats.uzawa_converged = false;
-        // The Uzawa map  lambda -> lambda + rho M u(lambda)  (M: the solid
-        // mask) is affine in lambda; each iteration is one linear solve.
-        // Plain Uzawa contracts each mode by 1 / (1 + rho mu), where mu
-        // measures how much of the mode's strain lies in the solid; modes
-        // on thin solid slivers of cut cells contract slowly, and the
-        // no-progress rule below ends such a loop (doc/fluid.md).
-        // The masked velocity of the update, allocated once per solve.
-        TrilinosWrappers::MPI::Vector update(distributed_multiplier.block(0));
-        double previous_residual = std::numeric_limits<double>::max();
-        // The particles' rigid velocities after each iteration: what the
-        // time loop takes from the solve. With Rigid velocity tolerance the
-        // loop stops on their change instead of on the strain left in the
-        // solid, whose cut-cell sliver modes contract slowly but barely
-        // move the particles (doc/fluid.md).
-        const bool by_velocity = settings.rigid_velocity_tolerance > 0.;
-        std::vector<RigidMotion> motions, previous_motions;
-        stats.rigid_velocity_change = std::numeric_limits<double>::quiet_NaN();
-        // Inexact Uzawa: a velocity inside the loop only has to be accurate
-        // next to the loop's own tolerance, which is what it is compared
-        // with. The velocity the loop ends on must meet the linear
-        // tolerance, so the solve that is predicted to be the last (from
-        // the loop's contraction so far) is exact, and if the loop ends on
-        // an inexact one, that one is solved again. Not carried on from
-        // the inexact velocity: FGMRES from it needed 2.5 times the
-        // iterations of a solve from zero (doc/fluid.md).
-        const double loop_tolerance =
-          std::max(settings.linear_tolerance,
-                   settings.inexact_uzawa_factor *
-                     (by_velocity ? settings.rigid_velocity_tolerance :
-                                    settings.rigidity_tolerance));
+        UzawaLoop::Settings loop_settings;
+        loop_settings.rigidity_tolerance    = settings.rigidity_tolerance;
+        loop_settings.rigidity_per_particle = settings.rigidity_per_particle;
+        loop_settings.rigid_velocity_tolerance =
+          settings.rigid_velocity_tolerance;
+        loop_settings.forced_velocity_scale = settings.forced_velocity_scale;
+        loop_settings.max_iterations        = settings.max_uzawa_iterations;
+        loop_settings.linear_tolerance      = settings.linear_tolerance;
+        loop_settings.inexact_factor        = settings.inexact_uzawa_factor;
         // With Reuse multiplier the first solve is usually the last: from
         // the last step's multiplier, and also after a remesh, where the
         // penalty alone mostly meets the tolerance (the 2D paper scene:
         // one Uzawa iteration per step). Without it the loop starts from
         // zero every step and takes several (a dense suspension: 4-5).
-        double next_tolerance = settings.reuse_multiplier ?
-                                  settings.linear_tolerance :
-                                  loop_tolerance;
-        bool   last_exact     = false;
-        // The passes over the solid that each iteration makes besides its
-        // linear solve (multiplier load, rigidity residual, rigid
-        // motions), timed apart: what a per-step table of the solid's
-        // quadrature points could save at most.
-        Timer passes;
-        passes.stop();
-        for (unsigned int k = 0; k < settings.max_uzawa_iterations; ++k)
-          {
-            passes.start();
-            assemble_multiplier_rhs(solid);
-            passes.stop();
-            last_exact = next_tolerance <= settings.linear_tolerance;
-            stats.linear_iterations += solve_linear(stats, next_tolerance);
-            ++stats.uzawa_iterations;
-            passes.start();
-            const RigidityResidual residual = rigidity_residual(solid);
-            record_residual(stats, residual);
-            motions = compute_rigid_motions(dof_handler,
-                                            cells,
-                                            solution,
-                                            solid,
-                                            quadrature,
-                                            &shared);
-            passes.stop();
-            if (k > 0)
-              stats.rigid_velocity_change =
-                rigid_velocity_change(previous_motions,
-                                      motions,
-                                      solid,
-                                      residual.shear_rate,
-                                      settings.forced_velocity_scale);
-            std::swap(motions, previous_motions);
-            if (settings.verbose &&
-                Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-              std::cout << "    Uzawa " << k << ": rigidity residual "
-                        << stats.rigidity_residual << ", rigid velocity change "
-                        << stats.rigid_velocity_change << ", FGMRES total "
-                        << stats.linear_iterations << ", expensive "
-                        << stats.expensive_solves << std::endl;
-            if (!std::isfinite(stats.rigidity_residual))
-              throw RunError("the Uzawa loop produced a non-finite rigidity "
-                             "residual (NaN or inf in the velocity)");
-            // The measure the loop is stopped on.
-            const double measure   = by_velocity ? stats.rigid_velocity_change :
-                                                   stats.rigidity_residual;
-            const double tolerance = by_velocity ?
-                                       settings.rigid_velocity_tolerance :
-                                       settings.rigidity_tolerance;
-            // The velocity's change needs two iterations.
-            const bool measured = !by_velocity || k > 0;
-            if (measured && measure < tolerance)
-              {
-                stats.uzawa_converged = true;
-                break;
-              }
-            // Stop a loop that no longer makes progress instead of spending
-            // the remaining iterations (each a full linear solve) on it:
-            // the measure grew (a particle touching a Dirichlet face,
-            // where rigidity and the imposed velocity contradict each
-            // other) or fell by less than 2 % in one iteration (the plateau
-            // of cut-cell slivers). The penalised solution stands; the
-            // caller reports the residual.
-            if (measured &&
-                previous_residual < std::numeric_limits<double>::max() &&
-                measure > 0.98 * previous_residual)
-              {
-                stats.uzawa_stalled = true;
-                break;
-              }
-            // Is the next iteration the last? The measure contracts about
-            // geometrically; predict it from the last two values.
-            const bool next_is_last =
-              k + 2 >= settings.max_uzawa_iterations ||
-              (measured &&
-               previous_residual < std::numeric_limits<double>::max() &&
-               measure * measure / previous_residual < tolerance);
-            next_tolerance =
-              next_is_last ? settings.linear_tolerance : loop_tolerance;
-            if (measured)
-              previous_residual = measure;
-            // The last iteration keeps the multiplier its solution was
-            // computed with: the stress (HydrodynamicStress) needs the
-            // pair that satisfies the momentum equation.
-            if (k + 1 == settings.max_uzawa_iterations)
-              break;
-            // lambda += rho M u: the plain Uzawa update, in place.
-            {
-              TrilinosWrappers::MPI::Vector &x =
-                distributed_multiplier.block(0);
-              update = distributed_solution.block(0);
-              update.scale(solid_mask.block(0));
-              x.add(rho, update);
-            }
-            multiplier = distributed_multiplier;
-          }
-        if (!last_exact)
-          {
-            // The right-hand side is still that of the last multiplier.
-            stats.linear_iterations +=
-              solve_linear(stats, settings.linear_tolerance);
-            record_residual(stats, rigidity_residual(solid));
-            if (!std::isfinite(stats.rigidity_residual))
-              throw RunError("the Uzawa loop produced a non-finite rigidity "
-                             "residual (NaN or inf in the velocity)");
-            if (settings.verbose &&
-                Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-              std::cout << "    Uzawa, last velocity again, exact: "
-                        << "rigidity residual " << stats.rigidity_residual
-                        << ", FGMRES total " << stats.linear_iterations
-                        << std::endl;
-          }
-        stats.solid_pass_seconds = passes.wall_time();
+        loop_settings.first_solve_exact = settings.reuse_multiplier;
+        loop_settings.print =
+          settings.verbose &&
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+
+        Uzawa                   problem(*this, solid, stats);
+        const UzawaLoop::Result loop = UzawaLoop(loop_settings).run(problem);
+        stats.uzawa_iterations       = loop.iterations;
+        stats.linear_iterations += loop.linear_iterations;
+        stats.rigidity_residual          = loop.rigidity_residual;
+        stats.particle_rigidity_residual = loop.particle_rigidity_residual;
+        stats.shared_residual            = loop.released_residual;
+        stats.rigid_velocity_change      = loop.rigid_velocity_change;
+        stats.uzawa_converged            = loop.converged;
+        stats.uzawa_stalled              = loop.stalled;
+        stats.solid_pass_seconds         = loop.solid_pass_seconds;
         // Only the multiplier of a converged loop is a warm start for the
         // next solve. Where rigidity cannot be met (two particles closer
         // than a cell, so one cell would have to carry two rigid motions;

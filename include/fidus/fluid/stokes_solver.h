@@ -11,6 +11,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <fidus/fluid/uzawa_loop.h>
 #include <fidus/fluid/velocity_block.h>
 #include <fidus/particles/rigid_motion.h>
 #include <fidus/particles/solid_indicator.h>
@@ -51,8 +52,8 @@ namespace Fidus
       double       penalty_factor     = 1e3;
       double       rigidity_tolerance = 1e-3;
       /// Compare rigidity_tolerance with the per-particle rigidity
-      /// residual (RigidityResidual::particle) instead of the box's
-      /// (RigidityResidual::held).
+      /// residual (UzawaProblem::Residual::particle) instead of the box's
+      /// (UzawaProblem::Residual::held).
       bool rigidity_per_particle = false;
       /// Uzawa stop on the particles' rigid velocities instead of the
       /// strain in the solid (0: off; see solve()).
@@ -111,10 +112,10 @@ namespace Fidus
       unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
       unsigned int expensive_solves  = 0;
       /// The rigidity residual in the measure the Uzawa loop stops on
-      /// (Settings::rigidity_per_particle): RigidityResidual::held or
-      /// RigidityResidual::particle.
+      /// (Settings::rigidity_per_particle): UzawaProblem::Residual::held
+      /// or UzawaProblem::Residual::particle.
       double rigidity_residual = 0.;
-      /// RigidityResidual::particle of the last iteration, whatever the
+      /// UzawaProblem::Residual::particle of the last iteration, whatever the
       /// measure.
       double particle_rigidity_residual = 0.;
       /// Largest change of a particle's rigid velocity in the last Uzawa
@@ -333,37 +334,13 @@ namespace Fidus
                     const Function<dim>       *fluid_viscosity);
     void
     assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
-    /// What rigidity_residual() measures.
-    struct RigidityResidual
-    {
-      /// sqrt(int |e(u)|^2 / int_box |e(u)|^2) over the solid outside
-      /// shared cells (what the Uzawa loop drives down by default).
-      double held = 0.;
-      /// The same over the solid in shared cells (released, reported only).
-      double released = 0.;
-      /// The box's rms shear rate sqrt(2 int_box |e(u)|^2 / |box|).
-      double shear_rate = 0.;
-      /// The largest over the particles of the rms strain rate in the
-      /// particle's held solid relative to the box's shear rate,
-      /// max_i sqrt(int_{P_i} |e(u)|^2 / |P_i|) / shear_rate: a measure
-      /// that does not depend on the box's size or the particle count.
-      double particle = 0.;
-    };
-    RigidityResidual
+    /// The strain the current solution leaves in the solid
+    /// (UzawaProblem::Residual).
+    UzawaProblem::Residual
     rigidity_residual(const SolidIndicator<dim> &solid) const;
-    /// Write @p residual into @p stats: the measure the loop stops on,
-    /// the per-particle one and the released solid's.
-    void
-    record_residual(Statistics &stats, const RigidityResidual &residual) const;
-    /// Largest change of a particle's rigid velocity between @p previous
-    /// and @p current, scaled by the larger of @p shear_rate times its
-    /// radius and @p forced_velocity (Statistics).
-    static double
-    rigid_velocity_change(const std::vector<RigidMotion> &previous,
-                          const std::vector<RigidMotion> &current,
-                          const SolidIndicator<dim>      &solid,
-                          double                          shear_rate,
-                          double                          forced_velocity);
+    /// The solver seen as the problem UzawaLoop iterates on
+    /// (stokes_solver_uzawa.cc).
+    class Uzawa;
     /// One FGMRES solve of the current system, from zero, to @p tolerance
     /// (relative to the right-hand side).
     unsigned int
