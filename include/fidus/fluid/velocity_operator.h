@@ -183,10 +183,41 @@ namespace Fidus
     {
       const unsigned int batch = phi.get_current_cell_index();
       phi.evaluate(EvaluationFlags::gradients);
-      for (unsigned int q = 0; q < phi.n_q_points; ++q)
-        phi.submit_symmetric_gradient(2. * viscosity(batch, q) *
-                                        phi.get_symmetric_gradient(q),
-                                      q);
+      if (phi.get_cell_type() == internal::MatrixFreeFunctions::cartesian)
+        {
+          // The same integrand on the unit-cell gradients, with the
+          // diagonal inverse Jacobian of an axis-parallel cell, in plain
+          // loops: through get_symmetric_gradient() and
+          // submit_symmetric_gradient() the compiler kept the tensors on
+          // the stack, and the reloads were two thirds of the time of this
+          // function, the largest item of a 3D run (doc/performance.md).
+          using Number             = VectorizedArray<double>;
+          const auto         inv   = phi.inverse_jacobian(0);
+          Number            *grads = phi.begin_gradients();
+          const unsigned int n_q   = phi.n_q_points;
+          Number             jac[dim];
+          for (unsigned int d = 0; d < dim; ++d)
+            jac[d] = inv[d][d];
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              Number g[dim][dim];
+              for (unsigned int c = 0; c < dim; ++c)
+                for (unsigned int d = 0; d < dim; ++d)
+                  g[c][d] = grads[(c * dim + d) * n_q + q] * jac[d];
+              // 2 eta e(u) JxW, tested against the unit-cell gradients of
+              // the test functions (the transpose of the same Jacobian).
+              const Number w = viscosity(batch, q) * phi.JxW(q);
+              for (unsigned int c = 0; c < dim; ++c)
+                for (unsigned int d = 0; d < dim; ++d)
+                  grads[(c * dim + d) * n_q + q] =
+                    (w * (g[c][d] + g[d][c])) * jac[d];
+            }
+        }
+      else
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          phi.submit_symmetric_gradient(2. * viscosity(batch, q) *
+                                          phi.get_symmetric_gradient(q),
+                                        q);
       phi.integrate(EvaluationFlags::gradients);
     }
 
