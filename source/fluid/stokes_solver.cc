@@ -119,6 +119,7 @@ namespace Fidus
     periodic_directions = periodic;
     dirichlet_ids       = dirichlet;
     preconditioners     = std::make_unique<Preconditioners>();
+    coupling_assembled  = false;
 
     dof_handler.distribute_dofs(fe);
     // Number the DoFs along the forest (z-order) before splitting them by
@@ -352,7 +353,15 @@ namespace Fidus
                                      const Function<dim>       *body_force,
                                      const Function<dim>       *fluid_viscosity)
   {
-    system_matrix         = 0;
+    const bool with_a = velocity_block_assembled();
+    // Without the velocity block, system_matrix holds only B, B^T and the
+    // diagonal of constrained rows: the same for every step on one mesh.
+    // Then it is assembled once per mesh; the load that the boundary values
+    // put on the pressure rows through B (it follows the shear rate) is
+    // added to the right-hand side by hand on the cells with such values.
+    const bool keep_coupling = !with_a && coupling_assembled;
+    if (!keep_coupling)
+      system_matrix = 0;
     preconditioner_matrix = 0;
     base_rhs              = 0;
     solid_mask            = 0;
@@ -377,7 +386,6 @@ namespace Fidus
     std::vector<unsigned int>            cands;
     dealii::Vector<double>               force(dim + 1);
     std::vector<bool>                    is_velocity(dofs_per_cell);
-    const bool                           with_a = velocity_block_assembled();
     // The cell's velocity and pressure DoFs, so that each coupling is
     // visited once (the pairs of a Q2-Q1 cell in 3D are 95 % velocity).
     std::vector<unsigned int> u_dofs, p_dofs;
@@ -514,17 +522,35 @@ namespace Fidus
           for (unsigned int j = 0; j < i; ++j)
             cell_prec(p_dofs[j], p_dofs[i]) = cell_prec(p_dofs[i], p_dofs[j]);
 
-        constraints.distribute_local_to_global(cell_matrix,
-                                               cell_rhs,
-                                               dofs,
-                                               system_matrix,
-                                               base_rhs);
+        if (!keep_coupling)
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 cell_rhs,
+                                                 dofs,
+                                                 system_matrix,
+                                                 base_rhs);
+        else
+          {
+            // What the distribution above adds to the right-hand side: the
+            // local rows times the constrained values (inhomogeneities),
+            // with the sign of a move to the other side.
+            for (const unsigned int k : u_dofs)
+              if (constraints.is_inhomogeneously_constrained(dofs[k]))
+                {
+                  const double g = constraints.get_inhomogeneity(dofs[k]);
+                  for (const unsigned int l : p_dofs)
+                    cell_rhs(l) -= cell_matrix(l, k) * g;
+                }
+            constraints.distribute_local_to_global(cell_rhs, dofs, base_rhs);
+          }
         constraints.distribute_local_to_global(cell_prec,
                                                dofs,
                                                preconditioner_matrix);
       }
+    if (!with_a)
+      coupling_assembled = true;
     n_shared_cells = Utilities::MPI::sum(n_shared_cells, mpi_communicator);
-    system_matrix.compress(VectorOperation::add);
+    if (!keep_coupling)
+      system_matrix.compress(VectorOperation::add);
     preconditioner_matrix.compress(VectorOperation::add);
     base_rhs.compress(VectorOperation::add);
     solid_mask.compress(VectorOperation::insert);

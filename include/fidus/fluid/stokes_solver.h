@@ -416,6 +416,10 @@ namespace Fidus
     /// without the multiplier.
     std::vector<bool> sliver;
     unsigned int      n_shared_cells = 0;
+    /// Whether system_matrix holds B and B^T of the current mesh, to be
+    /// kept (the velocity block is matrix-free, so nothing else in it
+    /// moves with the particles); reset by setup_dofs().
+    bool coupling_assembled = false;
 
     std::vector<unsigned int>    periodic_directions;
     std::set<types::boundary_id> dirichlet_ids;
