@@ -190,7 +190,7 @@ namespace Fidus
           // loops: through get_symmetric_gradient() and
           // submit_symmetric_gradient() the compiler kept the tensors on
           // the stack, and the reloads were two thirds of the time of this
-          // function, the largest item of a 3D run (doc/performance.md).
+          // function, the largest item of a 3D run (doc/preconditioners.md).
           using Number             = VectorizedArray<double>;
           const auto         inv   = phi.inverse_jacobian(0);
           Number            *grads = phi.begin_gradients();
