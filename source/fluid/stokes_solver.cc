@@ -465,18 +465,27 @@ namespace Fidus
         if (meets_solid && !shared_cell)
           mark_solid_dofs(cell);
 
+        // With B kept, the cell's B is needed only for the load of its
+        // boundary values.
+        bool with_b = !keep_coupling;
+        for (unsigned int i = 0; i < u_dofs.size() && !with_b; ++i)
+          with_b = constraints.is_inhomogeneously_constrained(dofs[u_dofs[i]]);
+
         cell_matrix = 0;
         cell_prec   = 0;
         cell_rhs    = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const double JxW = fe_values.JxW(q);
-            for (const unsigned int k : u_dofs)
-              {
-                if (with_a)
-                  symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
-                div[k] = fe_values[velocities].divergence(k, q) * JxW;
-              }
+            // (with_a implies with_b: the velocity block is assembled with
+            // the rest every step.)
+            if (with_b)
+              for (const unsigned int k : u_dofs)
+                {
+                  if (with_a)
+                    symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
+                  div[k] = fe_values[velocities].divergence(k, q) * JxW;
+                }
             for (const unsigned int k : p_dofs)
               phi_p[k] = fe_values[pressure].value(k, q);
             if (with_a)
@@ -487,13 +496,14 @@ namespace Fidus
                     cell_matrix(u_dofs[i], u_dofs[j]) +=
                       w * (symgrad[u_dofs[i]] * symgrad[u_dofs[j]]);
               }
-            for (const unsigned int k : u_dofs)
-              for (const unsigned int l : p_dofs)
-                {
-                  const double b = div[k] * phi_p[l];
-                  cell_matrix(k, l) -= b;
-                  cell_matrix(l, k) -= b;
-                }
+            if (with_b)
+              for (const unsigned int k : u_dofs)
+                for (const unsigned int l : p_dofs)
+                  {
+                    const double b = div[k] * phi_p[l];
+                    cell_matrix(k, l) -= b;
+                    cell_matrix(l, k) -= b;
+                  }
             const double w = JxW / eta[q];
             for (unsigned int i = 0; i < p_dofs.size(); ++i)
               for (unsigned int j = 0; j <= i; ++j)
