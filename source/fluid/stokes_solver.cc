@@ -542,9 +542,10 @@ namespace Fidus
           {
             // What the distribution above adds to the right-hand side: the
             // local rows times the constrained values (inhomogeneities),
-            // with the sign of a move to the other side.
+            // with the sign of a move to the other side; only a cell with
+            // such values (with_b) has any.
             for (const unsigned int k : u_dofs)
-              if (constraints.is_inhomogeneously_constrained(dofs[k]))
+              if (with_b && constraints.is_inhomogeneously_constrained(dofs[k]))
                 {
                   const double g = constraints.get_inhomogeneity(dofs[k]);
                   for (const unsigned int l : p_dofs)

@@ -112,6 +112,17 @@ namespace
     return s;
   }
 
+  /// Solves inside the loop to the rigidity tolerance (factor 1), the
+  /// first one too.
+  UzawaLoop::Settings
+  inexact_settings()
+  {
+    UzawaLoop::Settings s = base_settings();
+    s.inexact_factor      = 1.;
+    s.first_solve_exact   = false;
+    return s;
+  }
+
   std::function<double(unsigned int)>
   geometric(const double first, const double ratio)
   {
@@ -208,12 +219,10 @@ main(int argc, char **argv)
   std::cout << "d. the maximum count, inexact solves" << std::endl;
   {
     ModelProblem p;
-    p.strain            = geometric(0.1, 0.9);
-    auto s              = base_settings();
-    s.max_iterations    = 5;
-    s.inexact_factor    = 1.;
-    s.first_solve_exact = false;
-    const auto r        = UzawaLoop(s).run(p);
+    p.strain         = geometric(0.1, 0.9);
+    auto s           = inexact_settings();
+    s.max_iterations = 5;
+    const auto r     = UzawaLoop(s).run(p);
     check_count("iterations", r.iterations, 5);
     check_count("updates (the last keeps its multiplier)", p.updates, 4);
     check_count("solves", p.tolerances.size(), 5);
@@ -226,11 +235,9 @@ main(int argc, char **argv)
   std::cout << "e. inexact solves, prediction right" << std::endl;
   {
     ModelProblem p;
-    p.strain            = geometric(0.1, 0.5);
-    auto s              = base_settings();
-    s.inexact_factor    = 1.;
-    s.first_solve_exact = false;
-    const auto r        = UzawaLoop(s).run(p);
+    p.strain     = geometric(0.1, 0.5);
+    const auto s = inexact_settings();
+    const auto r = UzawaLoop(s).run(p);
     check_count("iterations", r.iterations, 8);
     check_count("solves", p.tolerances.size(), 8);
     check_count("exact solves", p.exact_solves(1e-6), 1);
@@ -249,11 +256,9 @@ main(int argc, char **argv)
     // again.
     const std::vector<double> m = {0.1, 0.02, 5e-4};
     ModelProblem              p;
-    p.strain            = [&](unsigned int n) { return m[std::min(n, 2u)]; };
-    auto s              = base_settings();
-    s.inexact_factor    = 1.;
-    s.first_solve_exact = false;
-    const auto r        = UzawaLoop(s).run(p);
+    p.strain     = [&](unsigned int n) { return m[std::min(n, 2u)]; };
+    const auto s = inexact_settings();
+    const auto r = UzawaLoop(s).run(p);
     check_count("iterations", r.iterations, 3);
     check_count("loads", p.loads, 3);
     check_count("solves", p.tolerances.size(), 4);
