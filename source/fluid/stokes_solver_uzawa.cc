@@ -229,7 +229,8 @@ namespace Fidus
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
-          false);
+          false,
+          settings.schur_bfbt ? &preconditioners->bfbt : nullptr);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
@@ -257,7 +258,8 @@ namespace Fidus
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
-          true);
+          true,
+          settings.schur_bfbt ? &preconditioners->bfbt : nullptr);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
