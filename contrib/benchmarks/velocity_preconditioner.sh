@@ -21,7 +21,6 @@
 #        (default: inclusion2d 8, inclusion3d 3, inclusion3d 4, inclusion3d 5,
 #         pair3d 6, dense2d, paper2d)
 #        TIMEOUT=s stops a run after s seconds and prints a row saying so.
-#        SCHUR="weighted BFBt" sets Schur complement approximation;
 #        CHEAP=n sets Maximum cheap iterations (0: inner solves only).
 #        NP=n runs on n MPI ranks (peak memory: the largest rank's).
 #        VARIANTS="GMG true true;AMG true true" limits the runs to those
@@ -165,7 +164,6 @@ subsection Fluid
     set Matrix-free velocity block = $mf
 $( [ "$avg" = default ] || echo "    set Multigrid viscosity averaging = $avg")
 $( [ "$blocks" = default ] || echo "    set Multigrid smoother blocks = ${blocks/cut/cut cells}")
-$( [ -z "${SCHUR:-}" ] || echo "    set Schur complement approximation = $SCHUR")
 $( [ -z "${CHEAP:-}" ] || echo "    set Maximum cheap iterations = $CHEAP")
   end
 end

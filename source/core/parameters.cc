@@ -291,7 +291,6 @@ namespace Fidus
         correction == "true" ||
         (correction == "auto" && !(geometric_multigrid && dim == 3));
       matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
-      schur_bfbt = prm.get("Schur complement approximation") == "weighted BFBt";
       if (geometric_multigrid && velocity_degree > 3)
         throw InputError(
           "entry 'Fluid/Linear solver/Preconditioner' has the value 'GMG' "

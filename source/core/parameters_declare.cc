@@ -355,17 +355,6 @@ namespace Fidus
           "auto: on, except with GMG in 3D, whose Galerkin levels and "
           "cut-cell blocks keep the particles' motions, where it was measured "
           "to cost 0-17 % of the solve (doc/preconditioners.md).");
-        prm.declare_entry(
-          "Schur complement approximation",
-          "pressure mass",
-          Patterns::Selection("pressure mass|weighted BFBt"),
-          "Approximation of the inverse Schur complement in the block "
-          "preconditioner. pressure mass: the pressure mass weighted by "
-          "1/eta, one Jacobi sweep. weighted BFBt: K^-1 B C^-1 A C^-1 B^T "
-          "K^-1 with K = B C^-1 B^T and C the velocity mass lumped with "
-          "sqrt(eta) (Rudi, Stadler and Ghattas 2017), two AMG V-cycles on "
-          "K and one product with A per application; measured against the "
-          "pressure mass in doc/preconditioners.md.");
       }
       prm.leave_subsection();
     }

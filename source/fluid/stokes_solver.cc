@@ -247,11 +247,6 @@ namespace Fidus
                       relevant_partitioning,
                       mpi_communicator);
     solid_mask.reinit(owned_partitioning, mpi_communicator);
-    if (settings.schur_bfbt)
-      bfbt_weight.reinit(owned_partitioning,
-                         relevant_partitioning,
-                         mpi_communicator,
-                         true);
     multiplier_valid = false;
   }
 
@@ -370,8 +365,6 @@ namespace Fidus
     preconditioner_matrix = 0;
     base_rhs              = 0;
     solid_mask            = 0;
-    if (settings.schur_bfbt)
-      bfbt_weight = 0;
 
     FEValues<dim>                    fe_values(fe,
                             quadrature,
@@ -385,7 +378,6 @@ namespace Fidus
     FullMatrix<double>     cell_matrix(dofs_per_cell, dofs_per_cell);
     FullMatrix<double>     cell_prec(dofs_per_cell, dofs_per_cell);
     dealii::Vector<double> cell_rhs(dofs_per_cell);
-    dealii::Vector<double> cell_weight(dofs_per_cell);
     std::vector<types::global_dof_index> dofs(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> symgrad(dofs_per_cell);
     std::vector<double>                  div(dofs_per_cell);
@@ -482,7 +474,6 @@ namespace Fidus
         cell_matrix = 0;
         cell_prec   = 0;
         cell_rhs    = 0;
-        cell_weight = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const double JxW = fe_values.JxW(q);
@@ -513,15 +504,6 @@ namespace Fidus
                     cell_matrix(k, l) -= b;
                     cell_matrix(l, k) -= b;
                   }
-            if (settings.schur_bfbt)
-              {
-                // Lumped with |phi|: the Q2 shape functions change sign,
-                // and in a cut cell sqrt(eta) could make a plain row sum
-                // of the weighted mass negative.
-                const double w = std::sqrt(eta[q]) * JxW;
-                for (const unsigned int k : u_dofs)
-                  cell_weight(k) += w * std::abs(fe_values.shape_value(k, q));
-              }
             const double w = JxW / eta[q];
             for (unsigned int i = 0; i < p_dofs.size(); ++i)
               for (unsigned int j = 0; j <= i; ++j)
@@ -574,8 +556,6 @@ namespace Fidus
         constraints.distribute_local_to_global(cell_prec,
                                                dofs,
                                                preconditioner_matrix);
-        if (settings.schur_bfbt)
-          bfbt_weight.add(dofs, cell_weight);
       }
     if (!with_a)
       coupling_assembled = true;
@@ -585,8 +565,6 @@ namespace Fidus
     preconditioner_matrix.compress(VectorOperation::add);
     base_rhs.compress(VectorOperation::add);
     solid_mask.compress(VectorOperation::insert);
-    if (settings.schur_bfbt)
-      bfbt_weight.compress(VectorOperation::add);
     make_pressure_rhs_consistent();
   }
 
@@ -618,23 +596,6 @@ namespace Fidus
 
 
   template <int dim>
-  TrilinosWrappers::MPI::Vector
-  StokesSolver<dim>::free_pressure_constant() const
-  {
-    TrilinosWrappers::MPI::Vector ones(owned_partitioning[1], mpi_communicator);
-    // Indices of the block view are block-local: shift by the number of
-    // velocity DoFs to ask the constraints.
-    const types::global_dof_index n_u = owned_partitioning[0].size();
-    for (const auto i : owned_partitioning[1])
-      if (!constraints.is_constrained(n_u + i))
-        ones(i) = 1.;
-    ones.compress(VectorOperation::insert);
-    return ones;
-  }
-
-
-
-  template <int dim>
   void
   StokesSolver<dim>::make_pressure_rhs_consistent()
   {
@@ -645,8 +606,15 @@ namespace Fidus
     // the constant-pressure component of the right-hand side makes the
     // system consistent without changing the velocity at the order of the
     // scheme.
-    const TrilinosWrappers::MPI::Vector ones   = free_pressure_constant();
-    const double                        n_free = ones * ones;
+    TrilinosWrappers::MPI::Vector ones(owned_partitioning[1], mpi_communicator);
+    // Indices of the block view are block-local: shift by the number of
+    // velocity DoFs to ask the constraints.
+    const types::global_dof_index n_u = owned_partitioning[0].size();
+    for (const auto i : owned_partitioning[1])
+      if (!constraints.is_constrained(n_u + i))
+        ones(i) = 1.;
+    ones.compress(VectorOperation::insert);
+    const double n_free = ones * ones;
     if (n_free > 0)
       {
         const double mean = (base_rhs.block(1) * ones) / n_free;

@@ -136,28 +136,6 @@ namespace Fidus
           mg->apply_velocity_block(dst, src);
         });
     build_rigid_body_correction(solid);
-    if (settings.schur_bfbt)
-      {
-        TrilinosWrappers::MPI::Vector weight(owned_partitioning[0],
-                                             mpi_communicator);
-        weight = bfbt_weight.block(0);
-        // Constrained velocity DoFs are not unknowns of the product B C^-1
-        // B^T (their columns of B are empty): no weight there.
-        for (const auto i : owned_partitioning[0])
-          if (constraints.is_constrained(i))
-            weight(i) = 0.;
-        weight.compress(VectorOperation::insert);
-        preconditioners->bfbt.initialize(system_matrix.block(1, 0),
-                                         system_matrix.block(0, 1),
-                                         weight,
-                                         preconditioner_matrix.block(1, 1),
-                                         free_pressure_constant(),
-                                         *velocity_block);
-        if (settings.verbose &&
-            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-          std::cout << "    weighted BFBt: set-up "
-                    << preconditioners->bfbt.setup_seconds << " s" << std::endl;
-      }
     if (multigrid_active)
       {
         // Two products with each level's operator: a check of the

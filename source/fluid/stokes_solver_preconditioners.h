@@ -10,7 +10,6 @@
 #include <fidus/fluid/rigid_mode_correction.h>
 #include <fidus/fluid/stokes_solver.h>
 #include <fidus/fluid/velocity_multigrid.h>
-#include <fidus/fluid/weighted_bfbt.h>
 #include <memory>
 
 namespace Fidus
@@ -29,8 +28,6 @@ namespace Fidus
     std::unique_ptr<VelocityMultigrid<dim>> multigrid;
     /// The particles' rigid motions (Settings::rigid_body_correction).
     RigidModeCorrection rigid_body_correction;
-    /// The weighted BFBt Schur approximation (Settings::schur_bfbt).
-    WeightedBFBt bfbt;
   };
 } // namespace Fidus
 

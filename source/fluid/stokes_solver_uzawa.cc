@@ -229,8 +229,7 @@ namespace Fidus
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
-          false,
-          settings.schur_bfbt ? &preconditioners->bfbt : nullptr);
+          false);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
@@ -258,8 +257,7 @@ namespace Fidus
           preconditioner_matrix.block(1, 1),
           velocity,
           preconditioners->jacobi,
-          true,
-          settings.schur_bfbt ? &preconditioners->bfbt : nullptr);
+          true);
         try
           {
             SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,

@@ -209,7 +209,6 @@ namespace Fidus
     ss.mg_smoother_blocks         = prm.mg_smoother_blocks;
     ss.rigid_body_correction      = prm.rigid_body_correction;
     ss.matrix_free_velocity_block = prm.matrix_free_velocity_block;
-    ss.schur_bfbt                 = prm.schur_bfbt;
     ss.reuse_multiplier           = prm.reuse_multiplier;
     ss.release_shared_cells       = prm.release_shared_cells;
     ss.verbose                    = prm.verbosity == Verbosity::verbose;

@@ -148,8 +148,6 @@ namespace Fidus
     std::string  mg_smoother_blocks         = "cut cells";
     bool         rigid_body_correction      = true;
     bool         matrix_free_velocity_block = true;
-    /// Fluid/Linear solver/Schur complement approximation = weighted BFBt.
-    bool schur_bfbt = false;
 
     // Particles
     std::vector<std::array<double, 3>> positions;

@@ -7,7 +7,6 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <fidus/fluid/velocity_block.h>
-#include <fidus/fluid/weighted_bfbt.h>
 
 namespace Fidus
 {
@@ -25,12 +24,8 @@ namespace Fidus
    * equivalent to the Schur complement B A^{-1} B^T even across large
    * viscosity jumps (the solid has r times the fluid viscosity).
    *
-   * With a WeightedBFBt, S^{-1} is that approximation instead of the
-   * pressure mass's.
-   *
-   * "Cheap" mode applies one V-cycle and one Jacobi sweep (or the BFBt's
-   * V-cycles); "expensive" mode solves each block with CG to a relative
-   * tolerance. FGMRES is used
+   * "Cheap" mode applies one V-cycle and one Jacobi sweep; "expensive"
+   * mode solves both blocks with CG to a relative tolerance. FGMRES is used
    * outside because either mode is a nonlinear (or inexact) operator.
    */
   template <class VelocityPreconditioner>
@@ -39,22 +34,19 @@ namespace Fidus
   public:
     /// @p stokes: the system matrix (for B^T); @p A: its velocity block
     /// (assembled or matrix-free); @p mass: the 1/eta pressure mass;
-    /// @p expensive selects inner solves; @p bfbt, if not null, replaces
-    /// the pressure mass.
+    /// @p expensive selects inner solves.
     BlockSchurPreconditioner(const TrilinosWrappers::BlockSparseMatrix &stokes,
                              const VelocityBlock                       &A,
                              const TrilinosWrappers::SparseMatrix      &mass,
                              const VelocityPreconditioner &velocity,
                              const TrilinosWrappers::PreconditionJacobi &jacobi,
-                             const bool          expensive,
-                             const WeightedBFBt *bfbt = nullptr)
+                             const bool expensive)
       : stokes(stokes)
       , A(A)
       , mass(mass)
       , velocity(velocity)
       , jacobi(jacobi)
       , expensive(expensive)
-      , bfbt(bfbt)
     {}
 
     /// Apply the preconditioner: dst = P^{-1} src.
@@ -62,9 +54,7 @@ namespace Fidus
     vmult(TrilinosWrappers::MPI::BlockVector       &dst,
           const TrilinosWrappers::MPI::BlockVector &src) const
     {
-      if (bfbt != nullptr)
-        bfbt->vmult(dst.block(1), src.block(1), expensive);
-      else if (expensive)
+      if (expensive)
         {
           SolverControl control(1000, 1e-6 * src.block(1).l2_norm());
           SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
@@ -104,7 +94,6 @@ namespace Fidus
     const VelocityPreconditioner               &velocity;
     const TrilinosWrappers::PreconditionJacobi &jacobi;
     const bool                                  expensive;
-    const WeightedBFBt                         *bfbt;
     mutable TrilinosWrappers::MPI::Vector       tmp;
   };
 } // namespace Fidus

@@ -93,9 +93,6 @@ namespace Fidus
       /// Correct each V-cycle with the particles' rigid motions
       /// (RigidModeCorrection).
       bool rigid_body_correction = true;
-      /// Schur complement approximation: the weighted BFBt (WeightedBFBt)
-      /// instead of the 1/eta-weighted pressure mass.
-      bool schur_bfbt = false;
       /// Krylov vectors kept by FGMRES before a restart.
       unsigned int gmres_restart    = 200;
       bool         reuse_multiplier = true;
@@ -386,11 +383,6 @@ namespace Fidus
                  std::vector<double>             &eta) const;
     void
     make_pressure_rhs_consistent();
-    /// 1 on the locally owned pressure DoFs that are not constrained, 0 on
-    /// the others (the constant pressure that every closed box leaves
-    /// undetermined).
-    TrilinosWrappers::MPI::Vector
-    free_pressure_constant() const;
     /// Whether the velocity block is assembled into system_matrix (not
     /// when the geometric multigrid applies it without a matrix).
     bool
@@ -444,10 +436,7 @@ namespace Fidus
     TrilinosWrappers::MPI::BlockVector  solution;
     TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
     TrilinosWrappers::MPI::BlockVector  solid_mask;
-    /// Settings::schur_bfbt: the velocity mass lumped with the weight
-    /// sqrt(eta), summed by assemble_system().
-    TrilinosWrappers::MPI::BlockVector bfbt_weight;
-    bool                               multiplier_valid = false;
+    bool                                multiplier_valid = false;
     /// Whether the current mesh is solved with the geometric multigrid:
     /// Settings::geometric_multigrid, unless its hierarchy could not be
     /// built on this mesh (setup_dofs() then falls back to the AMG).
