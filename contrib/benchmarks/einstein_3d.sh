@@ -38,6 +38,7 @@ subsection Domain
 end
 subsection Fluid
   set Rigidity tolerance = 1e-4
+  set Rigidity measure = box
   set Solid retraction = $retraction
   subsection Linear solver
     set Tolerance = 1e-9

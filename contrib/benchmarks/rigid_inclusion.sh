@@ -26,6 +26,7 @@ end
 subsection Fluid
   set Penalty factor = $r
   set Rigidity tolerance = 5e-4
+  set Rigidity measure = box
   set Maximum Uzawa iterations = 30
 end
 subsection Particles

@@ -59,6 +59,7 @@ subsection Domain
 end
 subsection Fluid
   set Rigidity tolerance = ${RIGIDITY:-1e-4}
+  set Rigidity measure = box
   set Maximum Uzawa iterations = ${MAX_UZAWA:-10}
   set Shared cells = fluid
   set Lubrication correction = true

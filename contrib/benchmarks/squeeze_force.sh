@@ -59,6 +59,7 @@ subsection Domain
 end
 subsection Fluid
   set Rigidity tolerance = 1e-4
+  set Rigidity measure = box
   set Rigid velocity tolerance = ${RIGID_TOL:-1e-5}
   set Maximum Uzawa iterations = ${MAX_UZAWA:-30}
   set Solid retraction = ${RETRACTION:-0}

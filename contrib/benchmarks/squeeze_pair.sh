@@ -49,6 +49,7 @@ subsection Domain
 end
 subsection Fluid
   set Rigidity tolerance = 1e-5
+  set Rigidity measure = box
   set Rigid velocity tolerance = ${RIGID_TOL:-1e-5}
   set Maximum Uzawa iterations = 30
   set Solid retraction = $retraction

@@ -67,6 +67,7 @@ end
 subsection Fluid
   set Model = fictitious domain
   set Rigidity tolerance = ${RIGIDITY:-1e-2}
+  set Rigidity measure = box
   set Maximum Uzawa iterations = ${MAX_UZAWA:-5}
   set Shared cells = ${SHARED_CELLS:-auto}
   set Reuse multiplier = ${REUSE:-auto}

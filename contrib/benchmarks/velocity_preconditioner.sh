@@ -128,6 +128,7 @@ subsection Domain
 end
 subsection Fluid
   set Rigidity tolerance = 1e-2
+  set Rigidity measure = box
   set Maximum Uzawa iterations = 5
 end
 subsection Particles

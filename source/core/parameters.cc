@@ -197,14 +197,37 @@ namespace Fidus
 
     prm.enter_subsection("Fluid");
     {
-      fluid_model              = prm.get("Model") == "fictitious domain" ?
-                                   FluidModel::fictitious_domain :
-                                   FluidModel::undisturbed_shear;
-      viscosity                = prm.get_double("Viscosity");
-      penalty_factor           = prm.get_double("Penalty factor");
-      velocity_degree          = prm.get_integer("Velocity degree");
-      rigidity_tolerance       = prm.get_double("Rigidity tolerance");
-      rigidity_per_particle    = prm.get("Rigidity measure") == "particle";
+      fluid_model           = prm.get("Model") == "fictitious domain" ?
+                                FluidModel::fictitious_domain :
+                                FluidModel::undisturbed_shear;
+      viscosity             = prm.get_double("Viscosity");
+      penalty_factor        = prm.get_double("Penalty factor");
+      velocity_degree       = prm.get_integer("Velocity degree");
+      rigidity_per_particle = prm.get("Rigidity measure") == "particle";
+      {
+        // auto: the single particle's work-precision optimum in each
+        // measure (doc/uzawa.md, "Rigidity per particle").
+        const std::string text = Utilities::trim(prm.get("Rigidity tolerance"));
+        if (text == "auto")
+          rigidity_tolerance = rigidity_per_particle ? 5e-3 : 1e-3;
+        else
+          {
+            std::vector<double> v;
+            try
+              {
+                v = parse_numbers(text, "Fluid/Rigidity tolerance");
+              }
+            catch (const InputError &)
+              {
+                v.clear();
+              }
+            if (v.size() != 1 || !(v[0] > 0.) || !(v[0] < 1.))
+              throw InputError("entry 'Fluid/Rigidity tolerance' has the "
+                               "value '" +
+                               text + "'; allowed: auto or a number in (0, 1)");
+            rigidity_tolerance = v[0];
+          }
+      }
       rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
       sliver_threshold         = prm.get_double("Sliver threshold");
       max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");

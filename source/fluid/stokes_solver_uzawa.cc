@@ -331,7 +331,7 @@ namespace Fidus
         // updated by the loop, which only changes masked DoFs, yet they
         // still load the held solid next to them through e(lambda): a
         // frozen error that stalled the loop every other step in a dense
-        // suspension (doc/fluid.md). Keep only the masked part.
+        // suspension (doc/uzawa.md). Keep only the masked part.
         distributed_multiplier.block(0).scale(solid_mask.block(0));
         multiplier = distributed_multiplier;
       }
@@ -382,7 +382,7 @@ namespace Fidus
         // iteration; carried from step to step it kept growing and drove
         // the particle velocities to garbage within a few steps (dense
         // suspension, 100 discs at level 6: max |omega| 1.3 -> 25 -> 34,
-        // doc/fluid.md).
+        // doc/uzawa.md).
         multiplier_valid = stats.uzawa_converged;
       }
 

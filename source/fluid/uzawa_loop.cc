@@ -72,7 +72,7 @@ namespace Fidus
     // loop takes from the solve. With a rigid velocity tolerance the loop
     // stops on their change instead of on the strain left in the solid,
     // whose cut-cell sliver modes contract slowly but barely move the
-    // particles (doc/fluid.md).
+    // particles (doc/uzawa.md).
     const bool   by_velocity = settings.rigid_velocity_tolerance > 0.;
     const double tolerance   = by_velocity ? settings.rigid_velocity_tolerance :
                                              settings.rigidity_tolerance;
@@ -85,7 +85,7 @@ namespace Fidus
     // so far) is exact, and if the loop ends on an inexact one, that one is
     // solved again. Not carried on from the inexact velocity: FGMRES from
     // it needed 2.5 times the iterations of a solve from zero
-    // (doc/fluid.md).
+    // (doc/uzawa.md).
     const double loop_tolerance =
       std::max(settings.linear_tolerance, settings.inexact_factor * tolerance);
     double next_tolerance =

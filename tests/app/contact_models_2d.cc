@@ -19,6 +19,7 @@ run(const std::string &model)
   prm << "set Dimension = 2\n"
       << "set Output directory = output_" << model << "\n"
       << "subsection Fluid\n  set Rigidity tolerance = 1e-3\n"
+         "  set Rigidity measure = box\n"
       << "  set Shared cells = rigid\nend\n" // the seed's model
       << "subsection Particles\n  set Radius = 0.05\n"
       << "  set Positions = 0.451, 0.51; 0.549, 0.49\nend\n"

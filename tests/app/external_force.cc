@@ -50,6 +50,7 @@ namespace
         << "  set Boundary condition = linear shear\n"
         << "  set Shear rate = 0\nend\n"
         << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+           "  set Rigidity measure = box\n"
         << "  set Solid retraction = 0.3\n"
         << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\n"
         << "end\n"

@@ -38,6 +38,7 @@ namespace FidusTest
         << "subsection Domain\n  set Boundary condition = linear shear\n"
         << "  set Shear rate = 0\nend\n"
         << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+           "  set Rigidity measure = box\n"
         << "  set Rigid velocity tolerance = 1e-5\n"
         << "  set Maximum Uzawa iterations = 30\n"
         << "  set Lubrication correction = true\n"

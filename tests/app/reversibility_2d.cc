@@ -26,6 +26,7 @@ return_miss(const std::string &model)
       << "set Output directory = reversal_" << model << "\n"
       << "subsection Domain\n  set Shear rate = t < 3 ? 1 : -1\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 5e-3\n"
+         "  set Rigidity measure = box\n"
       << "  set Maximum Uzawa iterations = 4\nend\n"
       << "subsection Particles\n  set Radius = " << radius << "\n"
       << "  set Positions = " << x0[0][0] << ", " << x0[0][1] << "; "

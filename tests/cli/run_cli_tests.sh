@@ -186,7 +186,7 @@ if [ $status -eq 2 ] && grep -q "particle 0 reached the box face x = 1.*in/outfl
 # is the number of steps and whose worst value and step are those of the
 # largest rigidity residual in statistics.csv.
 { base | sed 's/End time = 0/End time = 1.1\n  set Time step = 0.1/';
-  printf 'subsection Fluid\n  set Rigidity tolerance = 1e-9\n  set Maximum Uzawa iterations = 1\nend\n';
+  printf 'subsection Fluid\n  set Rigidity tolerance = 1e-9\n  set Rigidity measure = box\n  set Maximum Uzawa iterations = 1\nend\n';
   printf 'subsection Mesh refinement\n  set Maximum level = 5\nend\n'; } > warn.prm
 rm -rf "$work/out"
 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \

@@ -29,6 +29,7 @@ set Dimension = 2
 set Output directory = $work/$1
 subsection Fluid
   set Rigidity tolerance = 1e-3
+  set Rigidity measure = box
   set Maximum Uzawa iterations = 4
 end
 subsection Particles

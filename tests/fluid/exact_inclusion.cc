@@ -23,6 +23,7 @@ run(const unsigned int dim, const unsigned int level)
       << "  set Boundary condition = exact rigid inclusion\n"
       << "end\n"
       << "subsection Fluid\n  set Rigidity tolerance = 5e-4\n"
+         "  set Rigidity measure = box\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-8\n  end\nend\n"
       << "subsection Particles\n  set Radius = " << (dim == 2 ? "0.15" : "0.2")
       << "\n  set Positions = " << (dim == 2 ? "0.5, 0.5" : "0.5, 0.5, 0.5")

@@ -41,6 +41,7 @@ run(const unsigned int dim,
       << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"
       << "  set Boundary condition = sliding walls\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 1e-12\n"
+         "  set Rigidity measure = box\n"
       << (shared_fluid ? "  set Shared cells = fluid\n" : "")
       << "  set Maximum Uzawa iterations = 2\n"
       << "  set Velocity degree = " << degree << "\n"

@@ -48,6 +48,7 @@ run(const unsigned int dim,
                         "  set Boundary condition = sliding walls\n")
     << "end\n"
     << "subsection Fluid\n  set Rigidity tolerance = 1e-12\n"
+       "  set Rigidity measure = box\n"
     << "  set Maximum Uzawa iterations = 2\n"
     << "  subsection Linear solver\n    set Tolerance = 1e-9\n"
     << "    set Preconditioner = " << preconditioner << "\n"

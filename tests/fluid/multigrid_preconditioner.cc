@@ -30,6 +30,7 @@ run(const unsigned int dim,
       << "  set Boundary condition = exact rigid inclusion\n"
       << "end\n"
       << "subsection Fluid\n  set Rigidity tolerance = 5e-4\n"
+         "  set Rigidity measure = box\n"
       << "  set Velocity degree = " << degree << "\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-8\n"
       << "    set Preconditioner = " << preconditioner << "\n  end\nend\n"
@@ -92,6 +93,7 @@ main(int argc, char **argv)
         << "subsection Domain\n  set Boundary condition = " << boundary
         << "\nend\n"
         << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+           "  set Rigidity measure = box\n"
         << "  subsection Linear solver\n    set Tolerance = 1e-9\n"
         << "    set Preconditioner = GMG\n    set Rigid-body correction = "
         << (correction ? "true" : "false") << "\n"

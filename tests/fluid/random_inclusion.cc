@@ -31,6 +31,7 @@ run(const double x, const double y, const unsigned int level)
       << "subsection Domain\n"
       << "  set Boundary condition = exact rigid inclusion\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 5e-4\n"
+         "  set Rigidity measure = box\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-8\n  end\nend\n"
       << "subsection Particles\n  set Radius = 0.05\n"
       << "  set Positions = " << x << ", " << y << "\nend\n"

@@ -37,6 +37,7 @@ namespace
     prm << std::setprecision(17) << "set Dimension = 2\n"
         << "set Output directory = output_" << shared_cells << "\n"
         << "subsection Fluid\n  set Rigidity tolerance = 1e-3\n"
+           "  set Rigidity measure = box\n"
         << "  set Maximum Uzawa iterations = 30\n"
         << "  set Shared cells = " << shared_cells << "\nend\n"
         << "subsection Particles\n  set Radius = " << a

@@ -26,6 +26,7 @@ run(const unsigned int dim,
       << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"
       << "end\n"
       << "subsection Fluid\n  set Rigidity tolerance = 2e-4\n"
+         "  set Rigidity measure = box\n"
       << "  subsection Linear solver\n    set AMG smoother type = " << smoother
       << "\n    set AMG smoother sweeps = " << (smoother == "ILU" ? 1 : 4)
       << "\n  end\nend\n"

@@ -84,6 +84,7 @@ namespace
         << "subsection Fluid\n  set Solid smoothing = " << smoothing << "\n"
         << "  set Maximum Uzawa iterations = 1\n"
         << "  set Rigidity tolerance = 1e-9\n"
+           "  set Rigidity measure = box\n"
         << "  subsection Linear solver\n    set Tolerance = 1e-11\n  end\n"
         << "end\n"
         << "subsection Particles\n  set Radius = 0.05\n"

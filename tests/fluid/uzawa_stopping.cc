@@ -98,6 +98,7 @@ main(int argc, char **argv)
   const Fidus::RunSummary constrained = run("");
 
   const Fidus::RunSummary released = run("  set Rigidity tolerance = 1e-6\n"
+                                         "  set Rigidity measure = box\n"
                                          "  set Sliver threshold = 0.5\n");
   const double            released_fgmres = last_value("linear_iterations");
   check_range("slivers released: steps whose Uzawa loop missed 1e-6",
@@ -145,6 +146,7 @@ main(int argc, char **argv)
 
   // The first solve is inexact only without Reuse multiplier.
   const Fidus::RunSummary inexact = run("  set Rigidity tolerance = 1e-6\n"
+                                        "  set Rigidity measure = box\n"
                                         "  set Sliver threshold = 0.5\n"
                                         "  set Reuse multiplier = false\n"
                                         "  subsection Linear solver\n"

@@ -31,6 +31,7 @@ run(const std::string &boundary,
       << "subsection Domain\n  set Boundary condition = " << boundary
       << "\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+         "  set Rigidity measure = box\n"
       << "  set Solid retraction = " << retraction << "\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\nend\n"
       << "subsection Particles\n  set Radius = " << radius

@@ -28,6 +28,7 @@ main(int argc, char **argv)
       << "  set Upper right = 1, 1, 1\n"
       << "  set Boundary condition = sliding walls\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 1e-4\n"
+         "  set Rigidity measure = box\n"
       << "  set Solid retraction = 0.3\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\nend\n"
       << "subsection Particles\n  set Radius = " << a << "\n"

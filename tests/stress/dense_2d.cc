@@ -35,6 +35,7 @@ run(const std::string &fluid, const std::string &model, const double end)
       << "subsection Domain\n  set Boundary condition = sliding walls\nend\n"
       << "subsection Fluid\n  set Model = " << fluid << "\n"
       << "  set Rigidity tolerance = 1e-3\n"
+         "  set Rigidity measure = box\n"
       << "  set Maximum Uzawa iterations = 3\nend\n"
       << "subsection Particles\n  set Radius = " << a << "\n"
       << "  set Positions = " << positions_entry(x, 2) << "\nend\n"

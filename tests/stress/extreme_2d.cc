@@ -31,6 +31,7 @@ run(const std::string &name,
       << "set Output directory = " << name << "\n"
       << "subsection Fluid\n  set Penalty factor = " << penalty << "\n"
       << "  set Rigidity tolerance = 5e-3\n"
+         "  set Rigidity measure = box\n"
       << "  set Maximum Uzawa iterations = 20\nend\n"
       << "subsection Particles\n  set Radius = " << a << "\n"
       << "  set Positions = " << positions << "\nend\n"

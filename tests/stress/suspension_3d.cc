@@ -26,6 +26,7 @@ main(int argc, char **argv)
       << "  set Upper right = 1, 1, 1\n"
       << "  set Boundary condition = sliding walls\nend\n"
       << "subsection Fluid\n  set Rigidity tolerance = 1e-2\n"
+         "  set Rigidity measure = box\n"
       << "  set Maximum Uzawa iterations = 10\nend\n"
       << "subsection Particles\n  set Radius = " << a << "\n"
       << "  set Positions = " << positions_entry(x, 3) << "\nend\n"

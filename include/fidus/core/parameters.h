@@ -99,9 +99,9 @@ namespace Fidus
     double       viscosity          = 1.;
     double       penalty_factor     = 1e3;
     unsigned int velocity_degree    = 2;
-    double       rigidity_tolerance = 1e-3;
+    double       rigidity_tolerance = 5e-3;
     /// Fluid/Rigidity measure = particle (false: box).
-    bool rigidity_per_particle = false;
+    bool rigidity_per_particle = true;
     /// Uzawa stop on the change of the rigid velocities (0: off).
     double rigid_velocity_tolerance = 0.;
     /// Solid share of a cell below which the multiplier leaves it out.

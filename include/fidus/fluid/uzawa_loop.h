@@ -17,7 +17,7 @@ namespace Fidus
    * iteration is one linear solve. Plain Uzawa contracts each mode by
    * 1 / (1 + rho mu), where mu measures how much of the mode's strain lies
    * in the solid; modes on thin solid slivers of cut cells contract slowly,
-   * so the loop also stops when it makes no progress (doc/fluid.md).
+   * so the loop also stops when it makes no progress (doc/uzawa.md).
    *
    * The measure is the rigidity residual (box or per particle), or, with a
    * rigid velocity tolerance, the largest change of a particle's rigid
