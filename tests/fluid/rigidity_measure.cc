@@ -10,7 +10,8 @@
 // the per-particle residual stays. Then, with Rigidity
 // measure = particle, the Uzawa loop stops on the per-particle residual:
 // the rigidity_residual column equals particle_rigidity_residual and lies
-// below the tolerance.
+// below the tolerance. Last, the defaults: the per-particle measure with
+// Rigidity tolerance = auto = 5e-3 (1e-3 with the box measure).
 
 #include "../fidus_test.h"
 
@@ -26,21 +27,26 @@ struct Residuals
   unsigned int uzawa = 0;
 };
 
-Residuals
-run(const double       side,
-    const unsigned int level,
-    const std::string &measure,
-    const double       tolerance,
-    const unsigned int max_uzawa)
+/// The scene's prm; an empty @p measure or @p tolerance leaves the entry at
+/// its default.
+std::string
+scene(const double       side,
+      const unsigned int level,
+      const std::string &measure,
+      const std::string &tolerance,
+      const unsigned int max_uzawa)
 {
   std::ostringstream prm;
   prm << "set Dimension = 2\nset Output directory = run_output\n"
       << "subsection Domain\n  set Lower left = 0, 0\n"
       << "  set Upper right = " << side << ", " << side << "\n"
       << "  set Boundary condition = exact rigid inclusion\nend\n"
-      << "subsection Fluid\n  set Rigidity tolerance = " << tolerance << "\n"
-      << "  set Rigidity measure = " << measure << "\n"
-      << "  set Maximum Uzawa iterations = " << max_uzawa << "\n"
+      << "subsection Fluid\n";
+  if (!tolerance.empty())
+    prm << "  set Rigidity tolerance = " << tolerance << "\n";
+  if (!measure.empty())
+    prm << "  set Rigidity measure = " << measure << "\n";
+  prm << "  set Maximum Uzawa iterations = " << max_uzawa << "\n"
       << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\nend\n"
       << "subsection Particles\n  set Radius = 0.1\n"
       << "  set Positions = 0.53, 0.48\nend\n"
@@ -50,7 +56,18 @@ run(const double       side,
       << "  set Minimum level = " << level - 5 << "\n"
       << "  set Maximum level = " << level << "\nend\n"
       << "subsection Output\n  set Verbosity = quiet\nend\n";
-  Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+  return prm.str();
+}
+
+Residuals
+run(const double       side,
+    const unsigned int level,
+    const std::string &measure,
+    const std::string &tolerance,
+    const unsigned int max_uzawa)
+{
+  const std::string prm = scene(side, level, measure, tolerance, max_uzawa);
+  Fidus::run_simulation(Fidus::read_parameters_from_string(prm));
   Residuals r;
   r.box = csv_column("run_output/statistics.csv", "rigidity_residual").back();
   r.particle =
@@ -67,8 +84,8 @@ main(int argc, char **argv)
   redirect_warnings();
 
   // One penalised solve each (the loop stops at its cap, which warns).
-  const auto unit  = run(1., 7, "box", 1e-6, 1);
-  const auto large = run(2., 8, "box", 1e-6, 1);
+  const auto unit  = run(1., 7, "box", "1e-6", 1);
+  const auto large = run(2., 8, "box", "1e-6", 1);
   check_range("one solve: box residual, unit box / box [0, 2]^2",
               unit.box / large.box,
               1.9,
@@ -79,7 +96,7 @@ main(int argc, char **argv)
               1.03);
 
   const double tolerance = 2e-3;
-  const auto   stopped   = run(1., 7, "particle", tolerance, 20);
+  const auto   stopped   = run(1., 7, "particle", "2e-3", 20);
   check_range("Rigidity measure = particle: rigidity_residual minus "
               "particle_rigidity_residual",
               std::abs(stopped.box - stopped.particle),
@@ -93,5 +110,30 @@ main(int argc, char **argv)
               stopped.uzawa,
               2,
               20);
+
+  // The defaults: the per-particle measure with Rigidity tolerance = auto,
+  // 5e-3; auto is 1e-3 with the box measure.
+  const Fidus::Parameters defaults =
+    Fidus::read_parameters_from_string(scene(1., 7, "", "", 20));
+  check_range("defaults: Rigidity measure is particle",
+              defaults.rigidity_per_particle ? 1 : 0,
+              1,
+              1);
+  check_range("defaults: Rigidity tolerance (auto, particle)",
+              defaults.rigidity_tolerance,
+              5e-3,
+              5e-3);
+  check_range("Rigidity measure = box: Rigidity tolerance (auto)",
+              Fidus::read_parameters_from_string(scene(1., 7, "box", "", 20))
+                .rigidity_tolerance,
+              1e-3,
+              1e-3);
+  // And the loop stops on the per-particle residual with them.
+  const auto by_default = run(1., 7, "", "", 20);
+  check_range("defaults: rigidity_residual minus particle_rigidity_residual",
+              std::abs(by_default.box - by_default.particle),
+              0.,
+              1e-15);
+  check_range("defaults: residual / 5e-3", by_default.particle / 5e-3, 0., 1.);
   return exit_code();
 }
