@@ -12,6 +12,8 @@
 # tolerance (a warning per step; cap it with MAX_UZAWA=3). fidus's default
 # releases them, since a contact model is on (doc/fluid.md).
 # Set KEEP=<dir> to keep the output directory (CSV files) in <dir>.
+# RIGIDITY=<tol> (default 1e-3) sets Fluid/Rigidity tolerance, in the box
+# measure of the tables in doc/.
 # MAX_UZAWA=<n> (default 50, fidus's), SHARED_CELLS=rigid|fluid|auto and
 # REUSE=true|false|auto (default auto, fidus's) set Fluid/Maximum Uzawa
 # iterations, Fluid/Shared cells and Fluid/Reuse multiplier;
@@ -61,6 +63,8 @@ subsection Domain
 end
 subsection Fluid
   set Model = $fluid
+  set Rigidity tolerance = ${RIGIDITY:-1e-3}
+  set Rigidity measure = box
   set Maximum Uzawa iterations = ${MAX_UZAWA:-50}
   set Shared cells = ${SHARED_CELLS:-auto}
   set Reuse multiplier = ${REUSE:-auto}

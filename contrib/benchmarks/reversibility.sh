@@ -9,7 +9,8 @@
 #   PRM=prm/two_particles_2d_converged.prm (default) the scene
 #   T=3 (default)                 the reversal time
 #   MODELS="gluey inelastic none" LEVELS="6 7" TOLERANCES="3e-4 1e-4"
-#   (default: MODELS="gluey inelastic", LEVELS and TOLERANCES: the prm's)
+#   (default: MODELS="gluey inelastic", LEVELS and TOLERANCES: the prm's;
+#   a tolerance given here is in the box measure)
 #   EXTRA="subsection Mesh refinement|set Remesh fraction = 0|end" more prm
 #   lines ('|' separates them), LABEL=text a first column naming them
 set -euo pipefail
@@ -36,7 +37,7 @@ run() { # model level tolerance
     echo "  set End time = $(echo "2 * $T" | bc -l)"
     echo "end"
     [ "$level" = prm ] || printf "subsection Mesh refinement\n  set Maximum level = %s\nend\n" "$level"
-    [ "$tol" = prm ] || printf "subsection Fluid\n  set Rigidity tolerance = %s\nend\n" "$tol"
+    [ "$tol" = prm ] || printf "subsection Fluid\n  set Rigidity tolerance = %s\n  set Rigidity measure = box\nend\n" "$tol"
     [ -z "${EXTRA:-}" ] || tr '|' '\n' <<< "$EXTRA"
     echo "subsection Output"
     echo "  set Field output interval = 0"

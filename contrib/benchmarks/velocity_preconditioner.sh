@@ -54,6 +54,8 @@ subsection Domain
 end
 subsection Fluid
   set Penalty factor = $penalty
+  set Rigidity tolerance = 1e-3
+  set Rigidity measure = box
 end
 subsection Particles
   set Radius = $r

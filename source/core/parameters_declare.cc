@@ -91,8 +91,8 @@ namespace Fidus
         "the box measure. Both are the work-precision optimum of a single "
         "particle (doc/uzawa.md, doc/performance.md): with the default "
         "penalty factor its velocity is at the discretisation error after "
-        "the first solve. Pairs closer than a cell need less (the paper's "
-        "scenes: doc/convergence.md).");
+        "the first solve. Pairs closer than a cell need a tighter tolerance "
+        "(the paper's scenes: doc/convergence.md).");
       prm.declare_entry(
         "Rigidity measure",
         "particle",
@@ -103,8 +103,8 @@ namespace Fidus
         "|P_i|^{1/2}), the same for one particle in any box. box: the "
         "strain in all of the solid relative to the strain in the whole "
         "box, ||e(u)||_{L2(solid)} / ||e(u)||_{L2(box)}, which for the same "
-        "rigidity changes with the box's size and the particle count (the "
-        "measure of the scenes in prm/, calibrated in it). statistics.csv "
+        "rigidity changes with the box's size and the particle count (most "
+        "scenes in prm/ were calibrated in it and say so). statistics.csv "
         "has both (rigidity_residual: the chosen one; "
         "particle_rigidity_residual). doc/uzawa.md compares them.");
       prm.declare_entry(
@@ -273,9 +273,9 @@ namespace Fidus
                           "(one V-cycle per block) before switching to inner "
                           "solves (CG with the V-cycle on the velocity block, "
                           "CG on the pressure mass). 0: inner solves only, "
-                          "whose count stays flat in the penalty factor; "
-                          "faster in 3D from a penalty factor of about 1e6 "
-                          "(doc/preconditioners.md).");
+                          "whose count grows much less with the penalty "
+                          "factor; measured faster in 3D at a penalty factor "
+                          "of 1e6 (doc/preconditioners.md).");
         prm.declare_entry("Maximum iterations",
                           "1000",
                           Patterns::Integer(1, 100000),

@@ -53,6 +53,10 @@ expect_error "radius <= 0" "Particles/Radius.*allowed: a radius > 0" \
   "$(base | sed 's/Radius = 0.05/Radius = -0.05/')"
 expect_error "GMG with Velocity degree 4" "Preconditioner' has the value 'GMG' with 'Fluid/Velocity degree' = 4; allowed: GMG with Velocity degree 2 or 3" \
   "$(base; printf 'subsection Fluid\n  set Velocity degree = 4\n  subsection Linear solver\n    set Preconditioner = GMG\n  end\nend\n')"
+expect_error "rigidity tolerance out of range" "Fluid/Rigidity tolerance' has the value '2'; allowed: auto or a number in (0, 1)" \
+  "$(base; printf 'subsection Fluid\n  set Rigidity tolerance = 2\nend\n')"
+expect_error "rigidity tolerance not a number" "Fluid/Rigidity tolerance' has the value 'tight'; allowed: auto or a number in (0, 1)" \
+  "$(base; printf 'subsection Fluid\n  set Rigidity tolerance = tight\nend\n')"
 expect_error "unknown preconditioner" "Preconditioner" \
   "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
 expect_error "solid retraction leaves no solid" "Fluid/Solid retraction' has the value 0.8, which leaves particle 0 (radius 0.01) no solid.*allowed: values below" \

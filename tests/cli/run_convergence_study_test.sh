@@ -137,8 +137,8 @@ check "a failed run: exit status 2, stderr tail reported, row marked" \
 
 # ------------------------------ 2. exact rigid inclusion, uniform refinement
 # Measured with this driver (fidus built on commit 636b1b5, defaults: penalty
-# 1000, rigidity tolerance 1e-3), L2 error of u (fluid) at uniform levels
-# 3, 4, 5: 1.0128e-02, 3.3932e-03, 3.3513e-03, i.e. orders 1.578 (3->4)
+# 1000, rigidity tolerance 1e-3 in the box measure, set in the prm), L2
+# error of u (fluid) at uniform levels 3, 4, 5: 1.0128e-02, 3.3932e-03, 3.3513e-03, i.e. orders 1.578 (3->4)
 # and 0.018 (4->5): level 4 happens to cut the particle favourably, level 5
 # gives back the gain (levels 6 and 7 continue at 1.17 and 1.36). Bands:
 # 3->4 in [1.40, 1.75] (a log10/ln mix-up gives 0.69 or 3.6, swapped values

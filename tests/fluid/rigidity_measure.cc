@@ -135,5 +135,11 @@ main(int argc, char **argv)
               0.,
               1e-15);
   check_range("defaults: residual / 5e-3", by_default.particle / 5e-3, 0., 1.);
+  // Looser than the 2e-3 above: the default tolerance is what the loop
+  // stops on, not 1e-3 (the box default).
+  check_range("defaults: Uzawa iterations, fewer than with 2e-3",
+              by_default.uzawa,
+              1,
+              stopped.uzawa - 1);
   return exit_code();
 }
