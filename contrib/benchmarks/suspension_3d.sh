@@ -17,6 +17,9 @@
 # LUBRICATION=true adds the sub-grid lubrication correction (default
 # false); RIGIDITY=<tolerance> (default 1e-2) and MAX_UZAWA=<n> (default 5)
 # set Fluid/Rigidity tolerance and Fluid/Maximum Uzawa iterations;
+# MEASURE=box|particle (default box, the measure of the tables in doc/)
+# sets Fluid/Rigidity measure (RIGIDITY=auto MEASURE=particle MAX_UZAWA=50
+# is fidus's default);
 # INEXACT=<factor> (default 0) sets Fluid/Linear solver/Inexact Uzawa
 # factor.
 # Usage: contrib/benchmarks/suspension_3d.sh [gluey|inelastic] \
@@ -67,7 +70,7 @@ end
 subsection Fluid
   set Model = fictitious domain
   set Rigidity tolerance = ${RIGIDITY:-1e-2}
-  set Rigidity measure = box
+  set Rigidity measure = ${MEASURE:-box}
   set Maximum Uzawa iterations = ${MAX_UZAWA:-5}
   set Shared cells = ${SHARED_CELLS:-auto}
   set Reuse multiplier = ${REUSE:-auto}
