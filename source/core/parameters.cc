@@ -8,6 +8,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <numeric>
@@ -57,6 +58,34 @@ namespace Fidus
           values.push_back(v);
         }
       return values;
+    }
+
+    /// An entry that is 'auto' (then @p auto_value) or one number for which
+    /// @p valid holds (any number if it is empty); otherwise throw one
+    /// message naming @p entry, its value and @p allowed.
+    double
+    number_or_auto(const std::string                 &value,
+                   const std::string                 &entry,
+                   const double                       auto_value,
+                   const std::string                 &allowed,
+                   const std::function<bool(double)> &valid = {})
+    {
+      const std::string text = Utilities::trim(value);
+      if (text == "auto")
+        return auto_value;
+      std::vector<double> v;
+      try
+        {
+          v = parse_numbers(text, entry);
+        }
+      catch (const InputError &)
+        {
+          v.clear();
+        }
+      if (v.size() != 1 || (valid && !valid(v[0])))
+        throw InputError("entry '" + entry + "' has the value '" + text +
+                         "'; allowed: " + allowed);
+      return v[0];
     }
 
     std::array<double, 3>
@@ -204,30 +233,14 @@ namespace Fidus
       penalty_factor        = prm.get_double("Penalty factor");
       velocity_degree       = prm.get_integer("Velocity degree");
       rigidity_per_particle = prm.get("Rigidity measure") == "particle";
-      {
-        // auto: the single particle's work-precision optimum in each
-        // measure (doc/uzawa.md, "Rigidity per particle").
-        const std::string text = Utilities::trim(prm.get("Rigidity tolerance"));
-        if (text == "auto")
-          rigidity_tolerance = rigidity_per_particle ? 5e-3 : 1e-3;
-        else
-          {
-            std::vector<double> v;
-            try
-              {
-                v = parse_numbers(text, "Fluid/Rigidity tolerance");
-              }
-            catch (const InputError &)
-              {
-                v.clear();
-              }
-            if (v.size() != 1 || !(v[0] > 0.) || !(v[0] < 1.))
-              throw InputError("entry 'Fluid/Rigidity tolerance' has the "
-                               "value '" +
-                               text + "'; allowed: auto or a number in (0, 1)");
-            rigidity_tolerance = v[0];
-          }
-      }
+      // auto: the single particle's work-precision optimum in each measure
+      // (doc/uzawa.md, "Rigidity per particle").
+      rigidity_tolerance =
+        number_or_auto(prm.get("Rigidity tolerance"),
+                       "Fluid/Rigidity tolerance",
+                       rigidity_per_particle ? 5e-3 : 1e-3,
+                       "auto or a number in (0, 1)",
+                       [](const double v) { return v > 0. && v < 1.; });
       rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
       sliver_threshold         = prm.get_double("Sliver threshold");
       max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
@@ -265,16 +278,10 @@ namespace Fidus
       // An entry that is 'auto' (then auto_value) or one gap in cells.
       const auto gap_or_auto = [&](const std::string &entry,
                                    const double       auto_value) {
-        const std::string text = Utilities::trim(prm.get(entry));
-        if (text == "auto")
-          return auto_value;
-        const std::vector<double> v = parse_numbers(text, "Fluid/" + entry);
-        if (v.size() != 1)
-          throw InputError("entry 'Fluid/" + entry + "' has the value '" +
-                           text +
-                           "'; allowed: auto or one gap in finest cell "
-                           "sizes > 0");
-        return v[0];
+        return number_or_auto(prm.get(entry),
+                              "Fluid/" + entry,
+                              auto_value,
+                              "auto or one gap in finest cell sizes > 0");
       };
       const std::vector<double> tangential =
         pair_and_wall_ranges("Lubrication tangential range",
