@@ -566,11 +566,15 @@ namespace Fidus
 
     prm.enter_subsection("Time stepping");
     {
-      end_time           = prm.get_double("End time");
-      time_step          = prm.get_double("Time step");
-      adaptive_time_step = prm.get_bool("Adaptive time step");
-      cfl_number         = prm.get_double("CFL number");
-      maximum_time_step  = prm.get_double("Maximum time step");
+      end_time               = prm.get_double("End time");
+      time_step              = prm.get_double("Time step");
+      adaptive_time_step     = prm.get_bool("Adaptive time step");
+      cfl_number             = prm.get_double("CFL number");
+      maximum_time_step      = prm.get_double("Maximum time step");
+      time_scheme            = prm.get("Scheme") == "trapezoidal" ?
+                                 TimeScheme::trapezoidal :
+                                 TimeScheme::ab2;
+      trapezoidal_iterations = prm.get_integer("Trapezoidal iterations");
     }
     prm.leave_subsection();
 

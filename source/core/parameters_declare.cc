@@ -541,6 +541,29 @@ namespace Fidus
                         "0.05",
                         Patterns::Double(0.),
                         "Upper bound of the adaptive time step [time], > 0.");
+      prm.declare_entry(
+        "Scheme",
+        "AB2",
+        Patterns::Selection("AB2|trapezoidal"),
+        "How the positions advance. AB2: the seed's Adams-Bashforth 2 "
+        "extrapolation of the solved rigid velocities, one fluid solve per "
+        "step. trapezoidal: the mean of the velocities at the start of the "
+        "step and at the positions it reaches, found from the AB2 "
+        "prediction in Trapezoidal iterations passes of one fluid solve "
+        "each; the last pass's velocities serve as the next step's start, "
+        "so one pass costs what AB2 does. The trapezoidal rule is symmetric "
+        "in time, so a reversed shear retraces the path up to the solver "
+        "tolerances; AB2 leaves an O(dt^2) return error (doc/results.md, "
+        "\"A time-symmetric scheme\").");
+      prm.declare_entry("Trapezoidal iterations",
+                        "1",
+                        Patterns::Integer(1, 20),
+                        "Fixed-point passes of the trapezoidal scheme, 1 to "
+                        "20, one fluid solve each: 1 is a predictor-"
+                        "corrector; each further pass divides the distance "
+                        "to the trapezoidal rule, and that of the last solve "
+                        "from the step's end positions, by about dt |grad "
+                        "U| / 2.");
     }
     prm.leave_subsection();
 

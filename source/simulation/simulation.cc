@@ -262,6 +262,7 @@ namespace Fidus
           {
             const double dt = choose_time_step();
             extrapolate_velocities(dt);
+            average_with_end_of_step_velocities(dt);
             add_lubrication(dt);
             project_onto_admissible_set(dt);
             advance_particles(dt);
@@ -445,42 +446,6 @@ namespace Fidus
     // bit-identically.
     const double remaining = prm.end_time - state.time;
     return dt <= remaining * (1. + 1e-9) ? dt : remaining;
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::extrapolate_velocities(const double dt)
-  {
-    // The Stokes problem is quasi-static and linear in the boundary data,
-    // so U is the shear rate times a field that depends on the positions
-    // only. Extrapolating U / shear and multiplying by the shear rate at
-    // the middle of the step is the same formula for a constant shear
-    // rate, and stays exact when the shear rate jumps at a step boundary (a
-    // reversal 't < T ? 1 : -1'), where plain AB2 would make one step with
-    // -2U: an O(dt) error that breaks the reversibility of Stokes flow,
-    // which is what the contact models are meant to keep.
-    const RunState &s     = state;
-    const double    beta  = s.have_history ? dt / (2. * s.dt_old) : 0.;
-    const double    g_now = shear(s.time);
-    const double    g_old = s.have_history ? shear(s.t_old) : g_now;
-    const double    g_mid = shear(s.time + 0.5 * dt);
-    // External forces add a part that does not scale with the shear rate.
-    const bool scaled = prm.external_forces.empty() && std::abs(g_now) > 0. &&
-                        std::abs(g_old) > 0.;
-    const double c_now = scaled ? g_mid / g_now : 1.;
-    const double c_old = scaled ? g_mid / g_old : 1.;
-    u_star.resize(n);
-    w_star.resize(n);
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          u_star[i][d] =
-            (1. + beta) * c_now * s.U[i][d] - beta * c_old * s.U_old[i][d];
-          w_star[i][d] =
-            (1. + beta) * c_now * s.W[i][d] - beta * c_old * s.W_old[i][d];
-        }
   }
 
 
@@ -682,131 +647,6 @@ namespace Fidus
             m << "; output up to step " << s.step - 1 << " is written";
             throw RunError(m.str());
           }
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::predict_velocities()
-  {
-    fluid_stats = typename StokesSolver<dim>::Statistics();
-    remeshed    = false;
-    if (!fictitious)
-      {
-        // Free-draining particles: the undisturbed shear at the centre.
-        const double g = shear(state.time);
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            state.U[i] = {{g * (state.X[i][1] - box.y_mid), 0., 0.}};
-            state.W[i] = {{0., 0., -0.5 * g}};
-          }
-        return;
-      }
-    solid.reinit(state.X,
-                 solid_radii,
-                 box.lo,
-                 box.hi,
-                 box.is_periodic,
-                 box.query_reach);
-    refine_mesh_if_particles_moved();
-    solve_fluid();
-    extract_rigid_motion();
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::refine_mesh_if_particles_moved()
-  {
-    TimerOutput::Scope scope(*timer, "mesh");
-    double             moved = 0;
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        double d2 = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          d2 += std::pow(Contact::PairSearch::minimum_image(
-                           state.X[i][d] - state.X_at_remesh[i][d],
-                           box.periods[d]),
-                         2);
-        moved = std::max(moved, std::sqrt(d2));
-      }
-    // Skip remeshing while no particle has left a fraction of the refined
-    // band: the mesh still resolves every surface.
-    if (state.mesh_ready &&
-        moved <= prm.remesh_fraction * prm.interface_band * box.h_finest)
-      return;
-    const unsigned int changes = refiner->adapt(*tria, solid);
-    if (changes > 0 || !state.mesh_ready)
-      {
-        solver->setup_dofs(box.periodic, box.dirichlet_ids);
-        remeshed = true;
-      }
-    state.X_at_remesh = state.X;
-    state.mesh_ready  = true;
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::solve_fluid()
-  {
-    TimerOutput::Scope scope(*timer, "fluid");
-    boundary.set_shear_rate(shear(state.time));
-    fluid_stats =
-      solver->solve(solid,
-                    exact ? static_cast<const Function<dim> &>(*exact) :
-                            boundary,
-                    external_force.get());
-    if (fluid_stats.uzawa_converged)
-      return;
-    ++state.totals.uzawa_failures;
-    std::ostringstream m;
-    m << "step " << state.step << ", t = " << state.time
-      << ": the Uzawa loop stopped after " << fluid_stats.uzawa_iterations
-      << (fluid_stats.uzawa_iterations == 1 ? " iteration" : " iterations")
-      << " at " << (prm.rigidity_per_particle ? "per-particle " : "")
-      << "rigidity residual " << fluid_stats.rigidity_residual;
-    if (prm.rigid_velocity_tolerance > 0.)
-      m << ", rigid velocity change " << fluid_stats.rigid_velocity_change
-        << " > " << prm.rigid_velocity_tolerance
-        << (fluid_stats.uzawa_stalled ?
-              " (no progress in the last iteration; Fluid/Rigid velocity "
-              "tolerance)" :
-              " (Fluid/Maximum Uzawa iterations)");
-    else
-      m << " > " << prm.rigidity_tolerance
-        << (fluid_stats.uzawa_stalled ?
-              " (no progress in the last iteration; Fluid/Rigidity "
-              "tolerance)" :
-              " (Fluid/Maximum Uzawa iterations)");
-    warnings.warn("rigidity not reached",
-                  m.str(),
-                  state.step,
-                  fluid_stats.rigidity_residual);
-  }
-
-
-
-  template <int dim>
-  void
-  Simulation<dim>::extract_rigid_motion()
-  {
-    TimerOutput::Scope             scope(*timer, "rigid motion");
-    const std::vector<RigidMotion> motions =
-      compute_rigid_motions(solver->get_dof_handler(),
-                            solver->get_cells(),
-                            solver->get_solution(),
-                            solid,
-                            solver->get_quadrature(),
-                            &solver->get_shared_cells());
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        state.U[i] = motions[i].velocity;
-        state.W[i] = motions[i].omega;
-      }
   }
 
 

@@ -37,6 +37,16 @@ namespace Fidus
   };
 
   /// Screen verbosity.
+  /// Time stepping/Scheme: how the positions advance (doc/results.md,
+  /// "Reversibility").
+  enum class TimeScheme
+  {
+    /// Adams-Bashforth 2 on the solved rigid velocities (the seed's).
+    ab2,
+    /// Trapezoidal rule, by fixed-point passes from the AB2 prediction.
+    trapezoidal
+  };
+
   enum class Verbosity
   {
     quiet,
@@ -172,11 +182,13 @@ namespace Fidus
     double roughness = 5e-3;
 
     // Time stepping
-    double end_time           = 20.;
-    double time_step          = 0.01;
-    bool   adaptive_time_step = false;
-    double cfl_number         = 0.5;
-    double maximum_time_step  = 0.05;
+    double       end_time               = 20.;
+    double       time_step              = 0.01;
+    bool         adaptive_time_step     = false;
+    double       cfl_number             = 0.5;
+    double       maximum_time_step      = 0.05;
+    TimeScheme   time_scheme            = TimeScheme::ab2;
+    unsigned int trapezoidal_iterations = 1;
 
     // Mesh refinement
     unsigned int initial_global_refinement = 3;

@@ -92,12 +92,16 @@ namespace Fidus
    *   while the End time is not reached:
    *     choose the time step;
    *     extrapolate the rigid velocities (AB2);
+   *     with the trapezoidal scheme, average them with the velocities
+   *       solved at the positions they reach (predictor-corrector; that
+   *       solve then stands for the one after the move);
+   *     add the sub-grid lubrication (when on);
    *     project them onto the admissible set K (contact, glue);
    *     advance the particles;
    *     refine the mesh if the particles moved (fictitious domain);
    *     solve the fluid (penalised Stokes, Uzawa);
    *     extract each particle's rigid velocity;
-   *     write the output;
+   *     measure the stress, write the output;
    *     checkpoint when due, stop when a signal asked for it.
    *
    * The fluid and contact modules never see each other.
@@ -134,6 +138,13 @@ namespace Fidus
     /// AB2 extrapolation of U / shear rate to the middle of the step.
     void
     extrapolate_velocities(double dt);
+    /// Time stepping/Scheme = trapezoidal: replace the extrapolated
+    /// velocities by the mean of the velocities at the start of the step
+    /// and those solved at the positions the step reaches (Trapezoidal
+    /// iterations passes of a fixed-point iteration from the AB2
+    /// prediction); nothing to do with AB2.
+    void
+    average_with_end_of_step_velocities(double dt);
     /// Sub-grid lubrication: the squeeze resistance of gaps below the
     /// mesh scale, added implicitly to the extrapolated velocities
     /// (Fluid/Lubrication correction; nothing to do without it).
@@ -146,18 +157,31 @@ namespace Fidus
     /// a particle crossed a face where it cannot stay.
     void
     advance_particles(double dt);
-    /// Adapt the mesh to the particles, unless they moved little since the
-    /// last remesh.
+    /// Adapt the mesh to particles at @p X, unless they moved little since
+    /// the last remesh.
     void
-    refine_mesh_if_particles_moved();
-    /// Penalised Stokes with the rigidity multiplier (Uzawa).
+    refine_mesh_if_particles_moved(const std::vector<RunState::Vec3> &X);
+    /// Penalised Stokes with the rigidity multiplier (Uzawa) and the shear
+    /// rate @p g; a loop that stops short is reported for @p step, with
+    /// @p where saying which solve it was.
     void
-    solve_fluid();
+    solve_fluid(double g, unsigned int step, const std::string &where);
     /// The rigid velocity (U, omega) of each particle from the fluid.
     void
-    extract_rigid_motion();
-    /// Velocities at the current positions: the three stages above, or the
-    /// undisturbed shear flow at the centres.
+    extract_rigid_motion(std::vector<RunState::Vec3> &U,
+                         std::vector<RunState::Vec3> &W);
+    /// Rigid velocities @p U, @p W of particles at @p X under the shear
+    /// rate @p g: the three stages above, or the undisturbed shear flow at
+    /// the centres.
+    void
+    rigid_velocities_at(const std::vector<RunState::Vec3> &X,
+                        double                             g,
+                        unsigned int                       step,
+                        const std::string                 &where,
+                        std::vector<RunState::Vec3>       &U,
+                        std::vector<RunState::Vec3>       &W);
+    /// Velocities at the current positions and time (rigid_velocities_at),
+    /// or, after trapezoidal passes, those of the last pass.
     void
     predict_velocities();
     /// The suspension's stress: hydrodynamic from the fluid solve, contact
@@ -225,6 +249,13 @@ namespace Fidus
     /// This step's work, for its output row.
     typename StokesSolver<dim>::Statistics fluid_stats;
     bool                                   remeshed = false;
+    /// The trapezoidal passes of this step: the velocities of the last
+    /// (the end of the step's, until predict_velocities() takes them),
+    /// their iterations summed and whether one of them remeshed.
+    std::vector<RunState::Vec3>            U_end, W_end;
+    bool                                   passes_solved = false;
+    typename StokesSolver<dim>::Statistics pass_stats;
+    bool                                   pass_remeshed = false;
     unsigned int n_active = 0, n_glued = 0, contact_iterations = 0;
     /// Extrapolated, lubricated and contact-corrected velocities.
     std::vector<RunState::Vec3> u_star, w_star, u_lubricated, w_lubricated,
