@@ -106,11 +106,14 @@ namespace Fidus
               state.X[i][d] + (d < dim ? dt * u_corrected[i][d] : 0.);
         box.wrap(X_end);
 
+        // The step's row reports the last pass's solve, with the
+        // iterations of all passes and their largest rigidity residual.
         const typename StokesSolver<dim>::Statistics before = pass_stats;
         remeshed                                            = false;
         rigid_velocities_at(X_end, g_end, state.step + 1, where, U_end, W_end);
-        pass_stats.uzawa_iterations += fluid_stats.uzawa_iterations;
-        pass_stats.linear_iterations += fluid_stats.linear_iterations;
+        pass_stats = fluid_stats;
+        pass_stats.uzawa_iterations += before.uzawa_iterations;
+        pass_stats.linear_iterations += before.linear_iterations;
         pass_stats.rigidity_residual =
           std::max(before.rigidity_residual, fluid_stats.rigidity_residual);
         pass_remeshed = pass_remeshed || remeshed;

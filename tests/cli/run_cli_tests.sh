@@ -57,6 +57,10 @@ expect_error "rigidity tolerance out of range" "Fluid/Rigidity tolerance' has th
   "$(base; printf 'subsection Fluid\n  set Rigidity tolerance = 2\nend\n')"
 expect_error "rigidity tolerance not a number" "Fluid/Rigidity tolerance' has the value 'tight'; allowed: auto or a number in (0, 1)" \
   "$(base; printf 'subsection Fluid\n  set Rigidity tolerance = tight\nend\n')"
+expect_error "unknown time scheme" "value RK4 for the entry named Scheme does not match.*AB2|trapezoidal" \
+  "$(base; printf 'subsection Time stepping\n  set Scheme = RK4\nend\n')"
+expect_error "no trapezoidal pass" "value 0 for the entry named Trapezoidal iterations does not match.*1...20" \
+  "$(base; printf 'subsection Time stepping\n  set Trapezoidal iterations = 0\nend\n')"
 expect_error "unknown preconditioner" "Preconditioner" \
   "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
 expect_error "solid retraction leaves no solid" "Fluid/Solid retraction' has the value 0.8, which leaves particle 0 (radius 0.01) no solid.*allowed: values below" \
