@@ -379,6 +379,19 @@ namespace Fidus::Contact
         e[d] /= r;
       double lambda, gamma;
       warm(i, j, lambda, gamma);
+      if (gamma < 0. && glued_normal_positions != nullptr)
+        {
+          // A glued pair: its line of centres at the middle of the step
+          // (see project()).
+          const Vec3 m  = search.separation((*glued_normal_positions)[i],
+                                           (*glued_normal_positions)[j]);
+          double     m2 = 0.;
+          for (unsigned d = 0; d < dim; ++d)
+            m2 += m[d] * m[d];
+          if (m2 > 0.)
+            for (unsigned d = 0; d < dim; ++d)
+              e[d] = m[d] / std::sqrt(m2);
+        }
       system.add_row(i, j, e, gap, gamma < 0., lambda, gamma);
     };
 
@@ -438,6 +451,36 @@ namespace Fidus::Contact
             add_pair(entry.first, entry.second);
         }
     return min_gap;
+  }
+
+
+
+  ProjectionStatistics
+  ContactProjector::project(const std::vector<Vec3>   &positions,
+                            const std::vector<double> &radii,
+                            const std::vector<Vec3>   &predicted,
+                            const double               dt,
+                            std::vector<Vec3>         &corrected,
+                            const std::vector<Vec3>   &normal_positions)
+  {
+    if (normal_positions.size() != positions.size())
+      throw ContactError("the glued pairs' normal positions have " +
+                         std::to_string(normal_positions.size()) +
+                         " entries for " + std::to_string(positions.size()) +
+                         " particles");
+    glued_normal_positions = &normal_positions;
+    try
+      {
+        const ProjectionStatistics s =
+          project(positions, radii, predicted, dt, corrected);
+        glued_normal_positions = nullptr;
+        return s;
+      }
+    catch (...)
+      {
+        glued_normal_positions = nullptr;
+        throw;
+      }
   }
 
 

@@ -100,10 +100,16 @@ namespace Fidus
         add_lubrication(dt);
         project_onto_admissible_set(dt);
         projector.restore_glue(glue);
+        X_mid.resize(n);
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int d = 0; d < 3; ++d)
-            X_end[i][d] =
-              state.X[i][d] + (d < dim ? dt * u_corrected[i][d] : 0.);
+            {
+              const double step = d < dim ? dt * u_corrected[i][d] : 0.;
+              X_end[i][d]       = state.X[i][d] + step;
+              // Not wrapped: the contact module takes minimum images of
+              // separations, and a step is far shorter than a period.
+              X_mid[i][d] = state.X[i][d] + 0.5 * step;
+            }
         box.wrap(X_end);
 
         // The step's row reports the last pass's solve, with the

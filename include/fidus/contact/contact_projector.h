@@ -126,6 +126,29 @@ namespace Fidus::Contact
             double                     dt,
             std::vector<Vec3>         &corrected);
 
+    /**
+     * The same, with the rows of glued pairs along the line of centres at
+     * @p glued_normal_positions instead of @p positions: the middle of the
+     * step, estimated by the caller. The equality of a glued row, D + dt
+     * e.(u_j - u_i) = 0, then keeps a touching pair's distance exactly when
+     * e is the direction at the step's exact middle: with d the separation
+     * and w = dt (u_j - u_i), e parallel to d + w/2 gives |d + w| = |d|. With
+     * the normals of the start of the step, a glued pair that turns moves
+     * along the chord and opens its gap by O(dt^2) per step, which the next
+     * step closes again; that is not symmetric in time, and a reversed run
+     * does not undo it (doc/results.md, "A time-symmetric scheme"). Rows
+     * that are not glued keep the normals of @p positions, which make the
+     * linearised gap a lower bound of the true one after the step (no
+     * overlap, by convexity).
+     */
+    ProjectionStatistics
+    project(const std::vector<Vec3>   &positions,
+            const std::vector<double> &radii,
+            const std::vector<Vec3>   &predicted,
+            double                     dt,
+            std::vector<Vec3>         &corrected,
+            const std::vector<Vec3>   &glued_normal_positions);
+
     /// Number of glued pairs (particle-particle and particle-wall).
     unsigned int
     n_glued() const;
@@ -223,6 +246,10 @@ namespace Fidus::Contact
     PairSearch       search;
     GlueState        glue;
     ConstraintSystem system;
+
+    /// Where the rows of glued pairs take their normals (null: at the
+    /// positions of the projection); set for one call of project().
+    const std::vector<Vec3> *glued_normal_positions = nullptr;
 
     /// Work arrays kept between calls.
     std::vector<PairSearch::Pair> pairs;

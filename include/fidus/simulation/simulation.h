@@ -153,6 +153,12 @@ namespace Fidus
     /// Contact: projection of the extrapolated velocities onto K.
     void
     project_onto_admissible_set(double dt);
+    /// The projection of a trapezoidal step: glued pairs take their
+    /// normals at the middle of the step, repeated until that middle is
+    /// the one the corrected velocities reach.
+    Contact::ProjectionStatistics
+    project_with_normals_at_middle(const std::vector<RunState::Vec3> &predicted,
+                                   double                             dt);
     /// Move and turn the particles; wrap periodic faces; stop the run if
     /// a particle crossed a face where it cannot stay.
     void
@@ -252,7 +258,11 @@ namespace Fidus
     /// The trapezoidal passes of this step: the velocities of the last
     /// (the end of the step's, until predict_velocities() takes them),
     /// their iterations summed and whether one of them remeshed.
-    std::vector<RunState::Vec3>            U_end, W_end;
+    std::vector<RunState::Vec3> U_end, W_end;
+    /// The middle of the step the last pass reached, where glued pairs
+    /// take their normals in the next projection (empty outside a
+    /// trapezoidal step).
+    std::vector<RunState::Vec3>            X_mid;
     bool                                   passes_solved = false;
     typename StokesSolver<dim>::Statistics pass_stats;
     bool                                   pass_remeshed = false;
