@@ -37,8 +37,8 @@ namespace Fidus
   };
 
   /// Screen verbosity.
-  /// Time stepping/Scheme: how the positions advance (doc/results.md,
-  /// "Reversibility").
+  /// Time stepping/Scheme: how the positions advance (doc/results.md, "A
+  /// time-symmetric scheme").
   enum class TimeScheme
   {
     /// Adams-Bashforth 2 on the solved rigid velocities (the seed's).
