@@ -97,8 +97,10 @@ namespace Fidus
     W_end.resize(n);
     for (unsigned int pass = 0; pass < prm.trapezoidal_iterations; ++pass)
       {
+        trial_pass = true;
         add_lubrication(dt);
         project_onto_admissible_set(dt);
+        trial_pass = false;
         projector.restore_glue(glue);
         X_mid.resize(n);
         for (unsigned int i = 0; i < n; ++i)

@@ -262,7 +262,10 @@ namespace Fidus
     /// The middle of the step the last pass reached, where glued pairs
     /// take their normals in the next projection (empty outside a
     /// trapezoidal step).
-    std::vector<RunState::Vec3>            X_mid;
+    std::vector<RunState::Vec3> X_mid;
+    /// Set while a trapezoidal pass places its solve: its lubrication and
+    /// projection are trials, whose trouble the step's final ones report.
+    bool                                   trial_pass    = false;
     bool                                   passes_solved = false;
     typename StokesSolver<dim>::Statistics pass_stats;
     bool                                   pass_remeshed = false;
