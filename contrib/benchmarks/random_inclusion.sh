@@ -11,14 +11,21 @@
 # the whole box to each level (Minimum level = Maximum level) instead of
 # adapting to the particle: the cost of the same error without adaptivity.
 # The last columns are the mean cells and the mean wall seconds of a run
-# (statistics.csv), for the cost at equal error.
+# (statistics.csv), for the cost at equal error. DIM=3 places spheres in
+# the unit cube (x, y, z in [0.4, 0.6]) instead of discs.
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
 fidus="${FIDUS:-$top/build-release/fidus}"
 a="${1:-0.05}"; levels="${2:-6 7 8}"; n="${3:-6}"
 work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
-positions=$(awk -v n="$n" 'BEGIN { srand(7); for (i = 0; i < n; ++i) printf "%.6f,%.6f\n", 0.4 + 0.2 * rand(), 0.4 + 0.2 * rand() }')
+dim="${DIM:-2}"
+lower="0, 0"; upper="1, 1"
+[ "$dim" = 3 ] && lower="0, 0, 0" && upper="1, 1, 1"
+positions=$(awk -v n="$n" -v dim="$dim" 'BEGIN { srand(7); for (i = 0; i < n; ++i) {
+  printf "%.6f,%.6f", 0.4 + 0.2 * rand(), 0.4 + 0.2 * rand()
+  if (dim == 3) printf ",%.6f", 0.4 + 0.2 * rand()
+  printf "\n" } }')
 
 fluid_settings=$(echo "${FLUID:-}" | tr ';' '\n' | sed '/^ *$/d; s/^ */  set /')
 echo "| binary | level | max \|U\|/(g a) | mean \|U\|/(g a) | max omega error | mean omega error | Uzawa (mean) | FGMRES (mean) | cells (mean) | wall s (mean) |"
@@ -30,9 +37,11 @@ for binary in ${OLD:-} "$fidus"; do
     rm -f "$work/errors.txt"
     for p in $positions; do
       cat > "$work/run.prm" <<EOF2
-set Dimension = 2
+set Dimension = $dim
 set Output directory = $work/out
 subsection Domain
+  set Lower left = $lower
+  set Upper right = $upper
   set Boundary condition = exact rigid inclusion
 end
 subsection Fluid
