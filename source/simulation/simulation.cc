@@ -545,8 +545,11 @@ namespace Fidus
       {
         const std::vector<RunState::Vec3> &predicted =
           lubrication ? u_lubricated : u_star;
+        // Only glued rows take the middle's normals, and the rows glued
+        // are those of the start of the step: without any, the middle
+        // changes nothing and one projection is enough.
         Contact::ProjectionStatistics cst;
-        if (X_mid.empty())
+        if (X_mid.empty() || projector.n_glued() == 0)
           cst =
             projector.project(state.X, prm.radii, predicted, dt, u_corrected);
         else
