@@ -314,7 +314,8 @@ namespace Fidus::Contact
   double
   ContactProjector::assemble(const std::vector<Vec3>   &positions,
                              const std::vector<double> &radii,
-                             const double               d_a)
+                             const double               d_a,
+                             const std::vector<Vec3>   *glued_normal_positions)
   {
     const unsigned      dim   = settings.dimension;
     const std::uint32_t n     = static_cast<std::uint32_t>(positions.size());
@@ -468,19 +469,12 @@ namespace Fidus::Contact
                          std::to_string(normal_positions.size()) +
                          " entries for " + std::to_string(positions.size()) +
                          " particles");
-    glued_normal_positions = &normal_positions;
-    try
-      {
-        const ProjectionStatistics s =
-          project(positions, radii, predicted, dt, corrected);
-        glued_normal_positions = nullptr;
-        return s;
-      }
-    catch (...)
-      {
-        glued_normal_positions = nullptr;
-        throw;
-      }
+    return project_with(positions,
+                        radii,
+                        predicted,
+                        dt,
+                        corrected,
+                        &normal_positions);
   }
 
 
@@ -491,6 +485,20 @@ namespace Fidus::Contact
                             const std::vector<Vec3>   &predicted,
                             const double               dt,
                             std::vector<Vec3>         &corrected)
+  {
+    return project_with(positions, radii, predicted, dt, corrected, nullptr);
+  }
+
+
+
+  ProjectionStatistics
+  ContactProjector::project_with(
+    const std::vector<Vec3>   &positions,
+    const std::vector<double> &radii,
+    const std::vector<Vec3>   &predicted,
+    const double               dt,
+    std::vector<Vec3>         &corrected,
+    const std::vector<Vec3>   *glued_normal_positions)
   {
     validate(positions, radii, predicted, dt);
     const unsigned dim = settings.dimension;
@@ -534,7 +542,8 @@ namespace Fidus::Contact
     while (true)
       {
         const auto   start_search = Clock::now();
-        const double min_gap      = assemble(positions, radii, d_a);
+        const double min_gap =
+          assemble(positions, radii, d_a, glued_normal_positions);
         statistics.search_seconds += seconds_since(start_search);
         if (statistics.n_search_repeats == 0)
           statistics.min_gap = min_gap;

@@ -233,11 +233,23 @@ namespace Fidus::Contact
     void
     check_periods(double a_max, double d_a) const;
 
-    /// Build the rows for alert distance @p d_a; returns the smallest gap.
+    /// Both project(): glued rows take their normals at
+    /// @p glued_normal_positions unless it is null.
+    ProjectionStatistics
+    project_with(const std::vector<Vec3>   &positions,
+                 const std::vector<double> &radii,
+                 const std::vector<Vec3>   &predicted,
+                 double                     dt,
+                 std::vector<Vec3>         &corrected,
+                 const std::vector<Vec3>   *glued_normal_positions);
+
+    /// Build the rows for alert distance @p d_a (glued rows' normals at
+    /// @p glued_normal_positions unless null); returns the smallest gap.
     double
     assemble(const std::vector<Vec3>   &positions,
              const std::vector<double> &radii,
-             double                     d_a);
+             double                     d_a,
+             const std::vector<Vec3>   *glued_normal_positions);
 
     Settings            settings;
     std::vector<Wall>   walls;
@@ -246,10 +258,6 @@ namespace Fidus::Contact
     PairSearch       search;
     GlueState        glue;
     ConstraintSystem system;
-
-    /// Where the rows of glued pairs take their normals (null: at the
-    /// positions of the projection); set for one call of project().
-    const std::vector<Vec3> *glued_normal_positions = nullptr;
 
     /// Work arrays kept between calls.
     std::vector<PairSearch::Pair> pairs;
