@@ -1,0 +1,92 @@
+#ifndef fidus_fluid_cut_stokes_inclusion_h
+#define fidus_fluid_cut_stokes_inclusion_h
+
+#include <deal.II/base/point.h>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * A cut finite element solver for the exact rigid inclusion (one
+   * force- and torque-free particle in linear shear, ExactRigidInclusion),
+   * the reference case of the converged-answers work (doc/fluid.md, "A cut
+   * finite element for the inclusion").
+   *
+   * The fictitious-domain predictor of the time loop holds the cut cells
+   * rigid, so a particle acts like a body between itself and the staircase
+   * of its cut cells, and its rigid velocity stops converging near 1e-3 to
+   * 1e-4 (doc/uzawa.md). Here the fluid lives only outside the particle: the
+   * Taylor-Hood Q2-Q1 field of a cut cell is integrated over its fluid part
+   * only (deal.II's NonMatching::QuadratureGenerator on the exact circle or
+   * sphere), the rigid motion U + omega x (x - X) is imposed on the surface
+   * by Nitsche's method, with U and omega as unknowns of the same symmetric
+   * system (so the particle is force- and torque-free weakly, the
+   * consistency terms being its traction), and ghost penalties on the faces
+   * of cut cells keep the system well conditioned however small the fluid
+   * part of a cell is (Burman & Hansbo 2014; Guzman & Olshanskii 2018 for
+   * Taylor-Hood). Cells inside the particle carry no unknowns
+   * (FE_Nothing). The box boundary takes the exact velocity.
+   *
+   * It solves one serial system with a sparse direct solver: a verification
+   * of what a cut element buys, not yet the predictor of the time loop.
+   */
+  template <int dim>
+  class CutStokesInclusion
+  {
+  public:
+    /// The scene and the discretisation's parameters.
+    struct Settings
+    {
+      /// Particle centre, in the unit box.
+      Point<dim> center;
+      /// Particle radius.
+      double radius = 0.1;
+      /// Shear rate g of the far field g (y - y_c) e_x.
+      double shear_rate = 1.;
+      /// Fluid viscosity.
+      double viscosity = 1.;
+      /// Global refinement of the unit box.
+      unsigned int global_level = 4;
+      /// Further levels in a band around the particle surface (the band
+      /// reaches band_cells cells of each new level beyond the surface, so
+      /// that every cut cell and its neighbours are on the finest level).
+      unsigned int band_levels = 0;
+      /// Width of that band in cells of the level being refined.
+      double band_cells = 3.;
+      /// Nitsche parameter: the penalty is nitsche * viscosity / h.
+      double nitsche = 40.;
+      /// Ghost penalty of the velocity, times viscosity h^(2k-1) for the
+      /// jumps of the k-th normal derivatives, k = 1, 2.
+      double ghost_velocity = 1e-3;
+      /// Ghost penalty of the pressure, times h^3 / viscosity for the jump
+      /// of the normal derivative.
+      double ghost_pressure = 1e-3;
+      /// Gauss points per direction of the cut-cell quadratures.
+      unsigned int quadrature_points = 4;
+    };
+
+    /// What one solve gives.
+    struct Result
+    {
+      /// |omega - omega_exact| / (g/2) (omega_z in 3D).
+      double omega_error = 0.;
+      /// |U| / (g a); the exact particle does not translate.
+      double translation = 0.;
+      /// ||u - u_exact||_{L2(fluid)} / (g a |fluid|^(1/2)).
+      double velocity_error = 0.;
+      /// Unknowns (fluid and rigid), active cells, cut cells.
+      unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
+      /// Finest cell size.
+      double h = 0.;
+      /// Wall seconds of the whole solve (setup, assembly, factorisation).
+      double seconds = 0.;
+    };
+
+    /// Build the mesh, assemble, solve and measure for @p settings.
+    static Result
+    solve(const Settings &settings);
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,570 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/hp/fe_collection.h>
+#include <deal.II/hp/q_collection.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/non_matching/fe_immersed_values.h>
+#include <deal.II/non_matching/quadrature_generator.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <stdexcept>
+
+namespace Fidus
+{
+  namespace
+  {
+    /// psi(xi) = |lower + h xi - X| - a on the reference cell of an
+    /// axis-parallel cell of size h: negative in the particle. The cut
+    /// quadratures are generated in reference coordinates, where FEValues
+    /// wants them.
+    template <int dim>
+    class ReferenceLevelSet : public Function<dim>
+    {
+    public:
+      ReferenceLevelSet(const Point<dim> &lower,
+                        const double      h,
+                        const Point<dim> &center,
+                        const double      radius)
+        : lower(lower)
+        , h(h)
+        , center(center)
+        , radius(radius)
+      {}
+
+      double
+      value(const Point<dim> &xi, const unsigned int = 0) const override
+      {
+        return (real(xi) - center).norm() - radius;
+      }
+
+      Tensor<1, dim>
+      gradient(const Point<dim> &xi, const unsigned int = 0) const override
+      {
+        const Tensor<1, dim> r = real(xi) - center;
+        return h * r / r.norm();
+      }
+
+      SymmetricTensor<2, dim>
+      hessian(const Point<dim> &xi, const unsigned int = 0) const override
+      {
+        const Tensor<1, dim>    r = real(xi) - center;
+        const double            d = r.norm();
+        SymmetricTensor<2, dim> H;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            H[i][j] = h * h * ((i == j ? 1. : 0.) - r[i] * r[j] / (d * d)) / d;
+        return H;
+      }
+
+    private:
+      Point<dim>
+      real(const Point<dim> &xi) const
+      {
+        Point<dim> x = lower;
+        for (unsigned int d = 0; d < dim; ++d)
+          x[d] += h * xi[d];
+        return x;
+      }
+
+      const Point<dim> lower;
+      const double     h;
+      const Point<dim> center;
+      const double     radius;
+    };
+
+    enum class Location
+    {
+      fluid,
+      cut,
+      solid
+    };
+
+    /// Where an axis-parallel cell lies relative to the ball: the nearest
+    /// and farthest points of a box from a point are found coordinate-wise.
+    template <typename CellIterator, int dim>
+    Location
+    locate(const CellIterator &cell, const Point<dim> &c, const double a)
+    {
+      const Point<dim> lo = cell->vertex(0);
+      const Point<dim> hi =
+        cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1);
+      double near2 = 0., far2 = 0.;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double n = std::max({lo[d] - c[d], 0., c[d] - hi[d]});
+          const double f =
+            std::max(std::abs(lo[d] - c[d]), std::abs(hi[d] - c[d]));
+          near2 += n * n;
+          far2 += f * f;
+        }
+      if (near2 >= a * a)
+        return Location::fluid;
+      if (far2 <= a * a)
+        return Location::solid;
+      return Location::cut;
+    }
+
+    /// The rigid motions: e_0..e_{dim-1}, then the rotations about the
+    /// centre (one in 2D, e_k x r in 3D).
+    template <int dim>
+    Tensor<1, dim>
+    rigid_mode(const unsigned int k, const Tensor<1, dim> &r)
+    {
+      Tensor<1, dim> w;
+      if (k < dim)
+        w[k] = 1.;
+      else if (dim == 2)
+        {
+          w[0] = -r[1];
+          w[1] = r[0];
+        }
+      else
+        {
+          // e_m x r with m = k - dim.
+          const unsigned int m  = k - dim;
+          const unsigned int m1 = (m + 1) % 3, m2 = (m + 2) % 3;
+          w[m2] = r[m1];
+          w[m1] = -r[m2];
+        }
+      return w;
+    }
+  } // namespace
+
+
+  template <int dim>
+  typename CutStokesInclusion<dim>::Result
+  CutStokesInclusion<dim>::solve(const Settings &s)
+  {
+    Timer        timer;
+    const double a = s.radius, eta = s.viscosity, g = s.shear_rate;
+    if (!(a > 0.) || !(eta > 0.))
+      throw std::invalid_argument("CutStokesInclusion: the radius and the "
+                                  "viscosity must be positive");
+    for (unsigned int d = 0; d < dim; ++d)
+      if (s.center[d] - a <= 0. || s.center[d] + a >= 1.)
+        throw std::invalid_argument("CutStokesInclusion: the particle must "
+                                    "lie inside the unit box");
+
+    Triangulation<dim> tria;
+    GridGenerator::hyper_cube(tria, 0., 1.);
+    tria.refine_global(s.global_level);
+    for (unsigned int l = 0; l < s.band_levels; ++l)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          {
+            const double reach =
+              s.band_cells * cell->diameter() / std::sqrt(dim);
+            const double d = (cell->center() - s.center).norm() - a;
+            if (std::abs(d) < reach)
+              cell->set_refine_flag();
+          }
+        tria.execute_coarsening_and_refinement();
+      }
+
+    const unsigned int    n_rigid = dim * (dim + 1) / 2;
+    const FESystem<dim>   taylor_hood(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1);
+    const FESystem<dim>   nothing(FE_Nothing<dim>(), dim, FE_Nothing<dim>(), 1);
+    hp::FECollection<dim> fe_collection(taylor_hood, nothing);
+
+    DoFHandler<dim> dof_handler(tria);
+    Result          result;
+    result.h = 1.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const Location where = locate(cell, s.center, a);
+        cell->set_active_fe_index(where == Location::solid ? 1 : 0);
+        result.n_cut_cells += (where == Location::cut);
+        result.h = std::min(result.h, cell->extent_in_direction(0));
+      }
+    dof_handler.distribute_dofs(fe_collection);
+    const unsigned int n_fluid = dof_handler.n_dofs();
+    const unsigned int n_total = n_fluid + n_rigid;
+    result.n_dofs              = n_total;
+    result.n_cells             = tria.n_active_cells();
+
+    const FEValuesExtractors::Vector velocity(0);
+    const FEValuesExtractors::Scalar pressure(dim);
+    const ExactRigidInclusion<dim>   exact(s.center, a, g, eta);
+
+    // The box takes the exact velocity; one pressure value is pinned, since
+    // with Dirichlet data all round the pressure is fixed up to a constant.
+    AffineConstraints<double> constraints;
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    VectorTools::interpolate_boundary_values(dof_handler,
+                                             0,
+                                             exact,
+                                             constraints,
+                                             fe_collection.component_mask(
+                                               velocity));
+    {
+      const IndexSet pressure_dofs =
+        DoFTools::extract_dofs(dof_handler,
+                               fe_collection.component_mask(pressure));
+      const auto first = *pressure_dofs.begin();
+      if (!constraints.is_constrained(first))
+        constraints.add_line(first);
+    }
+    constraints.close();
+
+    // Cells with fluid, and the faces between two of them where at least
+    // one is cut: the ghost-penalty faces. They must not be hanging.
+    const MappingCartesian<dim> mapping;
+    DynamicSparsityPattern      dsp(n_total, n_total);
+    {
+      DynamicSparsityPattern fluid_dsp(n_fluid, n_fluid);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      fluid_dsp,
+                                      constraints,
+                                      true);
+      for (unsigned int i = 0; i < n_fluid; ++i)
+        for (auto it = fluid_dsp.begin(i); it != fluid_dsp.end(i); ++it)
+          dsp.add(i, it->column());
+    }
+    const unsigned int n_local = taylor_hood.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n_local), neighbour_dofs(n_local);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        const bool cut = locate(cell, s.center, a) == Location::cut;
+        cell->get_dof_indices(dofs);
+        if (cut)
+          for (const auto i : dofs)
+            for (unsigned int k = 0; k < n_rigid; ++k)
+              {
+                dsp.add(i, n_fluid + k);
+                dsp.add(n_fluid + k, i);
+              }
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (cell->at_boundary(f))
+              continue;
+            if (cell->neighbor(f)->has_children() ||
+                cell->neighbor_is_coarser(f))
+              {
+                if (cut)
+                  throw std::logic_error("CutStokesInclusion: a cut cell has "
+                                         "a hanging face; widen the band");
+                continue;
+              }
+            const auto neighbour = cell->neighbor(f);
+            if (neighbour->active_fe_index() != 0 ||
+                !(cut || locate(neighbour, s.center, a) == Location::cut))
+              continue;
+            neighbour->get_dof_indices(neighbour_dofs);
+            for (const auto i : dofs)
+              for (const auto j : neighbour_dofs)
+                dsp.add(i, j);
+          }
+      }
+    for (unsigned int k = 0; k < n_rigid; ++k)
+      for (unsigned int l = 0; l < n_rigid; ++l)
+        dsp.add(n_fluid + k, n_fluid + l);
+    SparsityPattern sparsity;
+    sparsity.copy_from(dsp);
+    SparseMatrix<double> matrix(sparsity);
+    Vector<double>       rhs(n_total), solution(n_total);
+
+    const unsigned int                   n_ext = n_local + n_rigid;
+    FullMatrix<double>                   local(n_ext, n_ext);
+    Vector<double>                       local_rhs(n_ext);
+    std::vector<types::global_dof_index> ext_dofs(n_ext);
+    for (unsigned int k = 0; k < n_rigid; ++k)
+      ext_dofs[n_local + k] = n_fluid + k;
+
+    // The fluid terms of one cell on the quadrature @p fe_values.
+    const auto add_volume = [&](const FEValues<dim> &fe_values) {
+      for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+        {
+          const double JxW = fe_values.JxW(q);
+          for (unsigned int i = 0; i < n_local; ++i)
+            {
+              const auto   eps_i = fe_values[velocity].symmetric_gradient(i, q);
+              const double div_i = fe_values[velocity].divergence(i, q);
+              const double q_i   = fe_values[pressure].value(i, q);
+              for (unsigned int j = 0; j < n_local; ++j)
+                local(i, j) += (2. * eta * eps_i *
+                                  fe_values[velocity].symmetric_gradient(j, q) -
+                                div_i * fe_values[pressure].value(j, q) -
+                                q_i * fe_values[velocity].divergence(j, q)) *
+                               JxW;
+            }
+        }
+    };
+
+    const hp::QCollection<1> q1d{QGauss<1>(s.quadrature_points)};
+    Point<dim>               one;
+    for (unsigned int d = 0; d < dim; ++d)
+      one[d] = 1.;
+    const BoundingBox<dim> unit_box(std::make_pair(Point<dim>(), one));
+    NonMatching::QuadratureGenerator<dim> generator(q1d);
+    const QGauss<dim>                     q_cell(3);
+    FEValues<dim>                         fe_fluid(mapping,
+                           taylor_hood,
+                           q_cell,
+                           update_gradients | update_values |
+                             update_JxW_values);
+    const UpdateFlags                     surface_flags =
+      update_values | update_gradients | update_JxW_values |
+      update_quadrature_points | update_normal_vectors;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        local     = 0.;
+        local_rhs = 0.;
+        cell->get_dof_indices(dofs);
+        std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
+        if (locate(cell, s.center, a) == Location::fluid)
+          {
+            fe_fluid.reinit(cell);
+            add_volume(fe_fluid);
+            constraints.distribute_local_to_global(local,
+                                                   local_rhs,
+                                                   ext_dofs,
+                                                   matrix,
+                                                   rhs);
+            continue;
+          }
+        const double h = cell->extent_in_direction(0);
+        generator.generate(
+          ReferenceLevelSet<dim>(cell->vertex(0), h, s.center, a),
+          unit_box);
+        const Quadrature<dim> &q_outside = generator.get_outside_quadrature();
+        if (q_outside.size() > 0)
+          {
+            FEValues<dim> fe_cut(mapping,
+                                 taylor_hood,
+                                 q_outside,
+                                 update_gradients | update_values |
+                                   update_JxW_values);
+            fe_cut.reinit(cell);
+            add_volume(fe_cut);
+          }
+        const auto &q_surface = generator.get_surface_quadrature();
+        if (q_surface.size() > 0)
+          {
+            NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
+                                                                 taylor_hood,
+                                                                 q_surface,
+                                                                 surface_flags);
+            fe_surface.reinit(cell);
+            const double gamma = s.nitsche * eta / h;
+            // Per extended index I: the trace of v - w_v, the traction's
+            // viscous part 2 eta eps(v) n and the pressure shape value.
+            std::vector<Tensor<1, dim>> jump(n_ext), traction(n_ext);
+            std::vector<double>         p_shape(n_ext);
+            for (unsigned int q = 0; q < q_surface.size(); ++q)
+              {
+                // The fluid's outward normal points into the particle.
+                const Tensor<1, dim> n = -fe_surface.normal_vector(q);
+                const Tensor<1, dim> r =
+                  fe_surface.quadrature_point(q) - s.center;
+                for (unsigned int i = 0; i < n_local; ++i)
+                  {
+                    jump[i] = fe_surface[velocity].value(i, q);
+                    traction[i] =
+                      2. * eta *
+                      (fe_surface[velocity].symmetric_gradient(i, q) * n);
+                    p_shape[i] = fe_surface[pressure].value(i, q);
+                  }
+                for (unsigned int k = 0; k < n_rigid; ++k)
+                  {
+                    jump[n_local + k]     = -rigid_mode<dim>(k, r);
+                    traction[n_local + k] = Tensor<1, dim>();
+                    p_shape[n_local + k]  = 0.;
+                  }
+                const double JxW = fe_surface.JxW(q);
+                for (unsigned int i = 0; i < n_ext; ++i)
+                  for (unsigned int j = 0; j < n_ext; ++j)
+                    local(i, j) +=
+                      (-traction[j] * jump[i] + p_shape[j] * (jump[i] * n) -
+                       traction[i] * jump[j] + p_shape[i] * (jump[j] * n) +
+                       gamma * jump[i] * jump[j]) *
+                      JxW;
+              }
+          }
+        constraints.distribute_local_to_global(local,
+                                               local_rhs,
+                                               ext_dofs,
+                                               matrix,
+                                               rhs);
+      }
+
+    // Ghost penalties on the faces of cut cells. The two cells share the
+    // DoFs of their common face, so the face's unknowns are the union of
+    // both cells' (as FEInterfaceValues numbers them): a shared DoF's jump
+    // takes the contributions of both sides.
+    {
+      const QGauss<dim - 1> q_face(3);
+      const UpdateFlags     face_flags = update_gradients | update_hessians |
+                                     update_JxW_values | update_normal_vectors |
+                                     update_quadrature_points;
+      FEFaceValues<dim> fe_face(mapping, taylor_hood, q_face, face_flags);
+      FEFaceValues<dim> fe_neighbour(mapping, taylor_hood, q_face, face_flags);
+      std::vector<types::global_dof_index>     face_dofs;
+      std::vector<std::array<unsigned int, 2>> local_of(n_local);
+      FullMatrix<double>                       face_matrix;
+      std::vector<Tensor<1, dim>>              d1, d2;
+      std::vector<double>                      dp;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          if (cell->active_fe_index() != 0)
+            continue;
+          const bool cut = locate(cell, s.center, a) == Location::cut;
+          for (const unsigned int f : cell->face_indices())
+            {
+              if (cell->at_boundary(f) || cell->neighbor(f)->has_children() ||
+                  cell->neighbor_is_coarser(f))
+                continue;
+              const auto neighbour = cell->neighbor(f);
+              if (neighbour->active_fe_index() != 0 ||
+                  !(neighbour->index() > cell->index()) ||
+                  !(cut || locate(neighbour, s.center, a) == Location::cut))
+                continue;
+              fe_face.reinit(cell, f);
+              fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
+              cell->get_dof_indices(dofs);
+              neighbour->get_dof_indices(neighbour_dofs);
+              face_dofs = dofs;
+              for (unsigned int i = 0; i < n_local; ++i)
+                {
+                  local_of[i][0] = i;
+                  const auto it =
+                    std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
+                  if (it != dofs.end())
+                    local_of[i][1] = it - dofs.begin();
+                  else
+                    {
+                      local_of[i][1] = face_dofs.size();
+                      face_dofs.push_back(neighbour_dofs[i]);
+                    }
+                }
+              const unsigned int n_face = face_dofs.size();
+              face_matrix.reinit(n_face, n_face);
+              const double h = cell->extent_in_direction(0);
+              for (unsigned int q = 0; q < q_face.size(); ++q)
+                {
+                  if ((fe_face.quadrature_point(q) -
+                       fe_neighbour.quadrature_point(q))
+                        .norm() > 1e-12 * h)
+                    throw std::logic_error(
+                      "CutStokesInclusion: face quadrature "
+                      "points do not match");
+                  const Tensor<1, dim> n = fe_face.normal_vector(q);
+                  d1.assign(n_face, Tensor<1, dim>());
+                  d2.assign(n_face, Tensor<1, dim>());
+                  dp.assign(n_face, 0.);
+                  for (unsigned int side = 0; side < 2; ++side)
+                    {
+                      const FEFaceValues<dim> &fv =
+                        side == 0 ? fe_face : fe_neighbour;
+                      const double sign = side == 0 ? 1. : -1.;
+                      for (unsigned int i = 0; i < n_local; ++i)
+                        {
+                          const unsigned int I    = local_of[i][side];
+                          const auto         grad = fv[velocity].gradient(i, q);
+                          const auto         hess = fv[velocity].hessian(i, q);
+                          for (unsigned int c = 0; c < dim; ++c)
+                            {
+                              d1[I][c] += sign * (grad[c] * n);
+                              d2[I][c] += sign * (n * (hess[c] * n));
+                            }
+                          dp[I] += sign * (fv[pressure].gradient(i, q) * n);
+                        }
+                    }
+                  const double JxW = fe_face.JxW(q);
+                  for (unsigned int i = 0; i < n_face; ++i)
+                    for (unsigned int j = 0; j < n_face; ++j)
+                      face_matrix(i, j) +=
+                        (s.ghost_velocity * eta *
+                           (h * d1[i] * d1[j] + h * h * h * d2[i] * d2[j]) -
+                         s.ghost_pressure / eta * h * h * h * dp[i] * dp[j]) *
+                        JxW;
+                }
+              constraints.distribute_local_to_global(face_matrix,
+                                                     face_dofs,
+                                                     matrix);
+            }
+        }
+    }
+
+    SparseDirectUMFPACK direct;
+    direct.initialize(matrix);
+    direct.vmult(solution, rhs);
+    constraints.distribute(solution);
+
+    // U is zero and omega = -g/2 (e_z in 3D) for the exact particle.
+    Tensor<1, dim> U;
+    for (unsigned int d = 0; d < dim; ++d)
+      U[d] = solution(n_fluid + d);
+    const double omega_z = solution(n_fluid + n_rigid - 1);
+    result.translation   = U.norm() / (g * a);
+    result.omega_error   = std::abs(omega_z + 0.5 * g) / (0.5 * g);
+
+    // The velocity error over the fluid, with the same cut quadratures.
+    double error2 = 0., volume = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        Quadrature<dim> quadrature = q_cell;
+        if (locate(cell, s.center, a) == Location::cut)
+          {
+            generator.generate(ReferenceLevelSet<dim>(cell->vertex(0),
+                                                      cell->extent_in_direction(
+                                                        0),
+                                                      s.center,
+                                                      a),
+                               unit_box);
+            quadrature = generator.get_outside_quadrature();
+          }
+        if (quadrature.size() == 0)
+          continue;
+        FEValues<dim> fe_values(mapping,
+                                taylor_hood,
+                                quadrature,
+                                update_values | update_quadrature_points |
+                                  update_JxW_values);
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            Tensor<1, dim> u;
+            for (unsigned int i = 0; i < n_local; ++i)
+              u += solution(dofs[i]) * fe_values[velocity].value(i, q);
+            Vector<double> values(dim + 1);
+            exact.vector_value(fe_values.quadrature_point(q), values);
+            for (unsigned int d = 0; d < dim; ++d)
+              u[d] -= values[d];
+            error2 += u.norm_square() * fe_values.JxW(q);
+            volume += fe_values.JxW(q);
+          }
+      }
+    result.velocity_error = std::sqrt(error2 / volume) / (g * a);
+    result.seconds        = timer.wall_time();
+    return result;
+  }
+
+  template class CutStokesInclusion<2>;
+  template class CutStokesInclusion<3>;
+} // namespace Fidus
