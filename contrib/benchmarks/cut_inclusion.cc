@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <deal.II/base/mpi.h>
 #include <fidus/fluid/cut_stokes_inclusion.h>
 #include <random>
 #include <sstream>
@@ -27,13 +28,15 @@ namespace
     for (auto &c : centers)
       for (unsigned int d = 0; d < dim; ++d)
         c[d] = middle(random);
-    std::printf("| level | finest h / a | max omega error | mean omega error | "
-                "max |U|/(g a) | mean |U|/(g a) | velocity L2 error | unknowns "
-                "(mean) | cut cells (mean) | wall s (mean) |\n"
-                "|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+      "| level | finest h / a | max omega error | mean omega error | "
+      "max |U|/(g a) | mean |U|/(g a) | velocity L2 error | unknowns "
+      "(mean) | cut cells (mean) | wall s (mean) | largest residual |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const unsigned int level : levels)
       {
-        double mw = 0., sw = 0., mu = 0., su = 0., mv = 0., h = 0., t = 0.;
+        double mw = 0., sw = 0., mu = 0., su = 0., mv = 0., h = 0., t = 0.,
+               mr   = 0.;
         double dofs = 0., cut = 0.;
         for (const auto &c : centers)
           {
@@ -54,13 +57,14 @@ namespace
             mu = std::max(mu, r.translation);
             su += r.translation;
             mv = std::max(mv, r.velocity_error);
+            mr = std::max(mr, r.residual);
             h  = r.h;
             t += r.seconds;
             dofs += r.n_dofs;
             cut += r.n_cut_cells;
           }
         std::printf("| %u | %.3f | %.2e | %.2e | %.2e | %.2e | %.2e | %.0f | "
-                    "%.0f | %.2f |\n",
+                    "%.0f | %.2f | %.1e |\n",
                     level,
                     h / a,
                     mw,
@@ -70,7 +74,8 @@ namespace
                     mv,
                     dofs / n,
                     cut / n,
-                    t / n);
+                    t / n,
+                    mr);
         std::fflush(stdout);
       }
   }
@@ -79,6 +84,7 @@ namespace
 int
 main(int argc, char **argv)
 {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   // cut_inclusion <dim> <a> "<levels>" <N> <band levels>
   const unsigned int        dim = argc > 1 ? std::atoi(argv[1]) : 2;
   const double              a   = argc > 2 ? std::atof(argv[2]) : 0.1;

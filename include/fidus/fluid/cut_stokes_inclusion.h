@@ -79,6 +79,8 @@ namespace Fidus
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
       /// Finest cell size.
       double h = 0.;
+      /// ||A x - b|| / ||b|| of the direct solve.
+      double residual = 0.;
       /// Wall seconds of the whole solve (setup, assembly, factorisation).
       double seconds = 0.;
     };
