@@ -41,8 +41,7 @@ namespace
         for (const auto &c : centers)
           {
             typename Fidus::CutStokesInclusion<dim>::Settings s;
-            s.center       = c;
-            s.radius       = a;
+            s.particles    = {{c, a, dealii::Tensor<1, dim>()}};
             s.global_level = level - band_levels;
             s.band_levels  = band_levels;
             if (const char *v = std::getenv("NITSCHE"))
@@ -79,12 +78,69 @@ namespace
         std::fflush(stdout);
       }
   }
+
+  /// Two discs of radius a at 0.5 -/+ (a + h/2) pushed together by
+  /// forces +/-1 in the box at rest: half their closing speed, per gap h/a
+  /// and level.
+  void
+  squeeze(const double                     a,
+          const std::vector<unsigned int> &levels,
+          const std::vector<double>       &gaps,
+          const unsigned int               band_levels)
+  {
+    std::printf("| h/a | level | a / cell | approach speed | unknowns | cut "
+                "cells | wall s | residual |\n"
+                "|---|---|---|---|---|---|---|---|\n");
+    for (const double gap : gaps)
+      for (const unsigned int level : levels)
+        {
+          using Solver = Fidus::CutStokesInclusion<2>;
+          Solver::Settings     s;
+          const double         x = a + 0.5 * gap * a;
+          dealii::Tensor<1, 2> f;
+          f[0]           = 1.;
+          s.particles    = {{dealii::Point<2>(0.5 - x, 0.5), a, f},
+                            {dealii::Point<2>(0.5 + x, 0.5), a, -f}};
+          s.boundary     = Solver::Boundary::linear_shear;
+          s.shear_rate   = 0.;
+          s.global_level = level - band_levels;
+          s.band_levels  = band_levels;
+          const auto r   = Solver::solve(s);
+          std::printf("| %g | %u | %.1f | %.6e | %u | %u | %.2f | %.1e |\n",
+                      gap,
+                      level,
+                      a * (1 << level),
+                      0.5 * (r.velocity[0][0] - r.velocity[1][0]),
+                      r.n_dofs,
+                      r.n_cut_cells,
+                      r.seconds,
+                      r.residual);
+          std::fflush(stdout);
+        }
+  }
 } // namespace
 
 int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // cut_inclusion pair <a> "<levels>" "<gaps / a>" <band levels>
+  if (argc > 1 && std::string(argv[1]) == "pair")
+    {
+      std::vector<unsigned int> levels;
+      std::vector<double>       gaps;
+      std::istringstream        in_levels(argc > 3 ? argv[3] : "4 5");
+      for (unsigned int l; in_levels >> l;)
+        levels.push_back(l);
+      std::istringstream in_gaps(argc > 4 ? argv[4] : "0.5 0.2 0.1 0.05");
+      for (double g; in_gaps >> g;)
+        gaps.push_back(g);
+      squeeze(argc > 2 ? std::atof(argv[2]) : 0.1,
+              levels,
+              gaps,
+              argc > 5 ? std::atoi(argv[5]) : 0);
+      return 0;
+    }
   // cut_inclusion <dim> <a> "<levels>" <N> <band levels>
   const unsigned int        dim = argc > 1 ? std::atoi(argv[1]) : 2;
   const double              a   = argc > 2 ? std::atof(argv[2]) : 0.1;

@@ -151,6 +151,55 @@ namespace Fidus
         }
       return w;
     }
+
+    /// Where a cell lies relative to all particles: inside one (solid), or
+    /// the number of surfaces it meets and the last of them.
+    struct Placement
+    {
+      bool         solid    = false;
+      unsigned int n_cut    = 0;
+      unsigned int particle = 0;
+    };
+
+    template <typename CellIterator, typename Particles>
+    Placement
+    place(const CellIterator &cell, const Particles &particles)
+    {
+      Placement p;
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        {
+          const Location where =
+            locate(cell, particles[k].center, particles[k].radius);
+          if (where == Location::solid)
+            p.solid = true;
+          else if (where == Location::cut)
+            {
+              ++p.n_cut;
+              p.particle = k;
+            }
+        }
+      return p;
+    }
+
+    /// u = g (y - 1/2) e_x, p = 0.
+    template <int dim>
+    class LinearShear : public Function<dim>
+    {
+    public:
+      explicit LinearShear(const double g)
+        : Function<dim>(dim + 1)
+        , g(g)
+      {}
+
+      double
+      value(const Point<dim> &x, const unsigned int component) const override
+      {
+        return component == 0 ? g * (x[1] - 0.5) : 0.;
+      }
+
+    private:
+      const double g;
+    };
   } // namespace
 
 
@@ -159,16 +208,22 @@ namespace Fidus
   CutStokesInclusion<dim>::solve(const Settings &s)
   {
     Timer        timer;
-    const double a = s.radius, eta = s.viscosity, g = s.shear_rate;
-    const auto   refuse = [](const std::string &what,
+    const double eta = s.viscosity, g = s.shear_rate;
+    const auto  &particles = s.particles;
+    const auto   refuse    = [](const std::string &what,
                            const double       value,
                            const std::string &allowed) {
       throw std::invalid_argument("CutStokesInclusion: " + what + " is " +
                                   std::to_string(value) +
                                   "; allowed: " + allowed);
     };
-    if (!(a > 0.))
-      refuse("the radius", a, "> 0");
+    if (particles.empty())
+      refuse("the number of particles", 0, ">= 1");
+    if (s.boundary == Boundary::exact_inclusion &&
+        (particles.size() != 1 || particles[0].force.norm() > 0.))
+      refuse("the number of particles of the exact inclusion",
+             particles.size(),
+             "one, force-free");
     if (!(eta > 0.))
       refuse("the viscosity", eta, "> 0");
     if (!(s.nitsche > 0.))
@@ -179,11 +234,30 @@ namespace Fidus
              ">= 0 (0 leaves small cut pieces unstable)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
-    for (unsigned int d = 0; d < dim; ++d)
-      if (s.center[d] - a <= 0. || s.center[d] + a >= 1.)
-        refuse("the centre's coordinate " + std::to_string(d),
-               s.center[d],
-               "the particle inside the unit box");
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const auto &P = particles[k];
+        if (!(P.radius > 0.))
+          refuse("the radius of particle " + std::to_string(k),
+                 P.radius,
+                 "> 0");
+        for (unsigned int d = 0; d < dim; ++d)
+          if (P.center[d] - P.radius <= 0. || P.center[d] + P.radius >= 1.)
+            refuse("coordinate " + std::to_string(d) + " of particle " +
+                     std::to_string(k) + "'s centre",
+                   P.center[d],
+                   "the particle inside the unit box");
+        for (unsigned int l = 0; l < k; ++l)
+          {
+            const double gap = (P.center - particles[l].center).norm() -
+                               P.radius - particles[l].radius;
+            if (!(gap > 0.))
+              refuse("the gap between particles " + std::to_string(l) +
+                       " and " + std::to_string(k),
+                     gap,
+                     "> 0");
+          }
+      }
 
     Triangulation<dim> tria;
     GridGenerator::hyper_cube(tria, 0., 1.);
@@ -191,14 +265,32 @@ namespace Fidus
     for (unsigned int l = 0; l < s.band_levels; ++l)
       {
         for (const auto &cell : tria.active_cell_iterators())
-          {
-            const double reach =
-              s.band_cells * cell->diameter() / std::sqrt(dim);
-            const double d = (cell->center() - s.center).norm() - a;
-            if (std::abs(d) < reach)
-              cell->set_refine_flag();
-          }
+          for (const auto &P : particles)
+            {
+              const double reach =
+                s.band_cells * cell->diameter() / std::sqrt(dim);
+              if (std::abs((cell->center() - P.center).norm() - P.radius) <
+                  reach)
+                cell->set_refine_flag();
+            }
         tria.execute_coarsening_and_refinement();
+      }
+    // A cell cut by two surfaces would need two level sets in one
+    // quadrature. Refining such cells until each meets one surface was
+    // tried: the approach speed of a pushed pair then matched the resolved
+    // fictitious-domain reference to 1 %, but a mirror-symmetric pair
+    // turned and drifted (omega 1e-3 against U 3e-3), which is not
+    // understood; so a gap thinner than a cell is refused for now.
+    Result result;
+    for (const auto &cell : tria.active_cell_iterators())
+      {
+        const Placement here = place(cell, particles);
+        if (!here.solid && here.n_cut >= 2)
+          throw std::invalid_argument(
+            "CutStokesInclusion: a cell of size " +
+            std::to_string(cell->extent_in_direction(0)) +
+            " is cut by two particles; allowed: gaps wider than the cells "
+            "around them (raise the level or the band)");
       }
 
     const unsigned int    n_rigid = dim * (dim + 1) / 2;
@@ -207,24 +299,31 @@ namespace Fidus
     hp::FECollection<dim> fe_collection(taylor_hood, nothing);
 
     DoFHandler<dim> dof_handler(tria);
-    Result          result;
     result.h = 1.;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        const Location where = locate(cell, s.center, a);
-        cell->set_active_fe_index(where == Location::solid ? 1 : 0);
-        result.n_cut_cells += (where == Location::cut);
+        const Placement here = place(cell, particles);
+        cell->set_active_fe_index(here.solid ? 1 : 0);
+        result.n_cut_cells += (!here.solid && here.n_cut > 0);
         result.h = std::min(result.h, cell->extent_in_direction(0));
       }
     dof_handler.distribute_dofs(fe_collection);
     const unsigned int n_fluid = dof_handler.n_dofs();
-    const unsigned int n_total = n_fluid + n_rigid;
+    const unsigned int n_total = n_fluid + n_rigid * particles.size();
     result.n_dofs              = n_total;
     result.n_cells             = tria.n_active_cells();
 
     const FEValuesExtractors::Vector velocity(0);
     const FEValuesExtractors::Scalar pressure(dim);
-    const ExactRigidInclusion<dim>   exact(s.center, a, g, eta);
+    const ExactRigidInclusion<dim>   exact(particles[0].center,
+                                         particles[0].radius,
+                                         g,
+                                         eta);
+    const LinearShear<dim>           shear(g);
+    const Function<dim>             &box_velocity =
+      s.boundary == Boundary::exact_inclusion ?
+                    static_cast<const Function<dim> &>(exact) :
+                    static_cast<const Function<dim> &>(shear);
 
     // The box takes the exact velocity; one pressure value is pinned, since
     // with Dirichlet data all round the pressure is fixed up to a constant.
@@ -232,7 +331,7 @@ namespace Fidus
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     VectorTools::interpolate_boundary_values(dof_handler,
                                              0,
-                                             exact,
+                                             box_velocity,
                                              constraints,
                                              fe_collection.component_mask(
                                                velocity));
@@ -269,14 +368,16 @@ namespace Fidus
       {
         if (cell->active_fe_index() != 0)
           continue;
-        const bool cut = locate(cell, s.center, a) == Location::cut;
+        const Placement here = place(cell, particles);
+        const bool      cut  = here.n_cut > 0;
         cell->get_dof_indices(dofs);
         if (cut)
           for (const auto i : dofs)
             for (unsigned int k = 0; k < n_rigid; ++k)
               {
-                dsp.add(i, n_fluid + k);
-                dsp.add(n_fluid + k, i);
+                const auto r = n_fluid + here.particle * n_rigid + k;
+                dsp.add(i, r);
+                dsp.add(r, i);
               }
         for (const unsigned int f : cell->face_indices())
           {
@@ -292,7 +393,7 @@ namespace Fidus
               }
             const auto neighbour = cell->neighbor(f);
             if (neighbour->active_fe_index() != 0 ||
-                !(cut || locate(neighbour, s.center, a) == Location::cut))
+                !(cut || place(neighbour, particles).n_cut > 0))
               continue;
             neighbour->get_dof_indices(neighbour_dofs);
             for (const auto i : dofs)
@@ -300,9 +401,10 @@ namespace Fidus
                 dsp.add(i, j);
           }
       }
-    for (unsigned int k = 0; k < n_rigid; ++k)
-      for (unsigned int l = 0; l < n_rigid; ++l)
-        dsp.add(n_fluid + k, n_fluid + l);
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int k = 0; k < n_rigid; ++k)
+        for (unsigned int l = 0; l < n_rigid; ++l)
+          dsp.add(n_fluid + p * n_rigid + k, n_fluid + p * n_rigid + l);
     SparsityPattern sparsity;
     sparsity.copy_from(dsp);
     SparseMatrix<double> matrix(sparsity);
@@ -312,8 +414,10 @@ namespace Fidus
     FullMatrix<double>                   local(n_ext, n_ext);
     Vector<double>                       local_rhs(n_ext);
     std::vector<types::global_dof_index> ext_dofs(n_ext);
-    for (unsigned int k = 0; k < n_rigid; ++k)
-      ext_dofs[n_local + k] = n_fluid + k;
+    // The external forces load the translations of the rigid unknowns.
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int d = 0; d < dim; ++d)
+        rhs(n_fluid + p * n_rigid + d) = particles[p].force[d];
 
     // The fluid terms of one cell on the quadrature @p fe_values.
     const auto add_volume = [&](const FEValues<dim> &fe_values) {
@@ -358,7 +462,11 @@ namespace Fidus
         local_rhs = 0.;
         cell->get_dof_indices(dofs);
         std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
-        if (locate(cell, s.center, a) == Location::fluid)
+        const Placement here = place(cell, particles);
+        const auto     &P    = particles[here.particle];
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          ext_dofs[n_local + k] = n_fluid + here.particle * n_rigid + k;
+        if (here.n_cut == 0)
           {
             fe_fluid.reinit(cell);
             add_volume(fe_fluid);
@@ -371,7 +479,7 @@ namespace Fidus
           }
         const double h = cell->extent_in_direction(0);
         generator.generate(
-          ReferenceLevelSet<dim>(cell->vertex(0), h, s.center, a),
+          ReferenceLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
           unit_box);
         const Quadrature<dim> &q_outside = generator.get_outside_quadrature();
         if (q_outside.size() > 0)
@@ -402,7 +510,7 @@ namespace Fidus
                 // The fluid's outward normal points into the particle.
                 const Tensor<1, dim> n = -fe_surface.normal_vector(q);
                 const Tensor<1, dim> r =
-                  fe_surface.quadrature_point(q) - s.center;
+                  fe_surface.quadrature_point(q) - P.center;
                 for (unsigned int i = 0; i < n_local; ++i)
                   {
                     jump[i] = fe_surface[velocity].value(i, q);
@@ -454,7 +562,7 @@ namespace Fidus
         {
           if (cell->active_fe_index() != 0)
             continue;
-          const bool cut = locate(cell, s.center, a) == Location::cut;
+          const bool cut = place(cell, particles).n_cut > 0;
           for (const unsigned int f : cell->face_indices())
             {
               if (cell->at_boundary(f) || cell->neighbor(f)->has_children() ||
@@ -463,7 +571,7 @@ namespace Fidus
               const auto neighbour = cell->neighbor(f);
               if (neighbour->active_fe_index() != 0 ||
                   !(neighbour->index() > cell->index()) ||
-                  !(cut || locate(neighbour, s.center, a) == Location::cut))
+                  !(cut || place(neighbour, particles).n_cut > 0))
                 continue;
               fe_face.reinit(cell, f);
               fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
@@ -581,55 +689,67 @@ namespace Fidus
     result.residual = residual.l2_norm() / rhs.l2_norm();
     constraints.distribute(solution);
 
-    // U is zero and omega = -g/2 (e_z in 3D) for the exact particle.
-    Tensor<1, dim> U;
-    for (unsigned int d = 0; d < dim; ++d)
-      U[d] = solution(n_fluid + d);
-    const double omega_z = solution(n_fluid + n_rigid - 1);
-    result.translation   = U.norm() / (g * a);
-    result.omega_error   = std::abs(omega_z + 0.5 * g) / (0.5 * g);
-
-    // The velocity error over the fluid, with the same cut quadratures.
-    double error2 = 0., volume = 0.;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (unsigned int p = 0; p < particles.size(); ++p)
       {
-        if (cell->active_fe_index() != 0)
-          continue;
-        Quadrature<dim> quadrature = q_cell;
-        if (locate(cell, s.center, a) == Location::cut)
-          {
-            generator.generate(ReferenceLevelSet<dim>(cell->vertex(0),
-                                                      cell->extent_in_direction(
-                                                        0),
-                                                      s.center,
-                                                      a),
-                               unit_box);
-            quadrature = generator.get_outside_quadrature();
-          }
-        if (quadrature.size() == 0)
-          continue;
-        FEValues<dim> fe_values(mapping,
-                                taylor_hood,
-                                quadrature,
-                                update_values | update_quadrature_points |
-                                  update_JxW_values);
-        fe_values.reinit(cell);
-        cell->get_dof_indices(dofs);
-        for (unsigned int q = 0; q < quadrature.size(); ++q)
-          {
-            Tensor<1, dim> u;
-            for (unsigned int i = 0; i < n_local; ++i)
-              u += solution(dofs[i]) * fe_values[velocity].value(i, q);
-            Vector<double> values(dim + 1);
-            exact.vector_value(fe_values.quadrature_point(q), values);
-            for (unsigned int d = 0; d < dim; ++d)
-              u[d] -= values[d];
-            error2 += u.norm_square() * fe_values.JxW(q);
-            volume += fe_values.JxW(q);
-          }
+        Tensor<1, dim> U;
+        Tensor<1, 3>   omega;
+        for (unsigned int d = 0; d < dim; ++d)
+          U[d] = solution(n_fluid + p * n_rigid + d);
+        for (unsigned int d = dim; d < n_rigid; ++d)
+          omega[dim == 2 ? 2 : d - dim] = solution(n_fluid + p * n_rigid + d);
+        result.velocity.push_back(U);
+        result.angular_velocity.push_back(omega);
       }
-    result.velocity_error = std::sqrt(error2 / volume) / (g * a);
-    result.seconds        = timer.wall_time();
+    if (s.boundary == Boundary::exact_inclusion)
+      {
+        // U is zero and omega = -g/2 e_z for the exact particle.
+        const double a     = particles[0].radius;
+        result.translation = result.velocity[0].norm() / (g * a);
+        result.omega_error =
+          std::abs(result.angular_velocity[0][2] + 0.5 * g) / (0.5 * g);
+
+        // The velocity error over the fluid, with the same cut quadratures.
+        double error2 = 0., volume = 0.;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            if (cell->active_fe_index() != 0)
+              continue;
+            Quadrature<dim> quadrature = q_cell;
+            if (place(cell, particles).n_cut > 0)
+              {
+                generator.generate(
+                  ReferenceLevelSet<dim>(cell->vertex(0),
+                                         cell->extent_in_direction(0),
+                                         particles[0].center,
+                                         a),
+                  unit_box);
+                quadrature = generator.get_outside_quadrature();
+              }
+            if (quadrature.size() == 0)
+              continue;
+            FEValues<dim> fe_values(mapping,
+                                    taylor_hood,
+                                    quadrature,
+                                    update_values | update_quadrature_points |
+                                      update_JxW_values);
+            fe_values.reinit(cell);
+            cell->get_dof_indices(dofs);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                Tensor<1, dim> u;
+                for (unsigned int i = 0; i < n_local; ++i)
+                  u += solution(dofs[i]) * fe_values[velocity].value(i, q);
+                Vector<double> values(dim + 1);
+                exact.vector_value(fe_values.quadrature_point(q), values);
+                for (unsigned int d = 0; d < dim; ++d)
+                  u[d] -= values[d];
+                error2 += u.norm_square() * fe_values.JxW(q);
+                volume += fe_values.JxW(q);
+              }
+          }
+        result.velocity_error = std::sqrt(error2 / volume) / (g * a);
+      }
+    result.seconds = timer.wall_time();
     return result;
   }
 

@@ -2,15 +2,19 @@
 #define fidus_fluid_cut_stokes_inclusion_h
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <vector>
 
 namespace Fidus
 {
   using namespace dealii;
 
   /**
-   * A cut finite element solver for the exact rigid inclusion (one
-   * force- and torque-free particle in linear shear, ExactRigidInclusion),
-   * the reference case of the converged-answers work (doc/fluid.md, "A cut
+   * A cut finite element solver for rigid particles held in Stokes flow in
+   * the unit box: the exact rigid inclusion (one force- and torque-free
+   * particle in linear shear, ExactRigidInclusion), the reference case of
+   * the converged-answers work, and a few particles pushed by forces or
+   * carried by a shear, for the squeeze of a thin gap (doc/fluid.md, "A cut
    * finite element for the inclusion").
    *
    * The fictitious-domain predictor of the time loop holds the cut cells
@@ -35,14 +39,36 @@ namespace Fidus
   class CutStokesInclusion
   {
   public:
+    /// One rigid particle.
+    struct Particle
+    {
+      /// Centre, in the unit box.
+      Point<dim> center;
+      /// Radius.
+      double radius = 0.1;
+      /// External force on it (none: force-free).
+      Tensor<1, dim> force;
+    };
+
+    /// The velocity the box's boundary takes.
+    enum class Boundary
+    {
+      /// The exact solution around one force-free particle
+      /// (ExactRigidInclusion); needs exactly one particle.
+      exact_inclusion,
+      /// g (y - 1/2) e_x (at rest for g = 0).
+      linear_shear
+    };
+
     /// The scene and the discretisation's parameters.
     struct Settings
     {
-      /// Particle centre, in the unit box.
-      Point<dim> center;
-      /// Particle radius.
-      double radius = 0.1;
-      /// Shear rate g of the far field g (y - y_c) e_x.
+      /// The particles (they must not overlap, nor touch the box).
+      std::vector<Particle> particles;
+      /// The box's velocity.
+      Boundary boundary = Boundary::exact_inclusion;
+      /// Shear rate g of the far field g (y - y_c) e_x (y_c the particle's
+      /// centre for the exact inclusion, 1/2 otherwise).
       double shear_rate = 1.;
       /// Fluid viscosity.
       double viscosity = 1.;
@@ -69,11 +95,18 @@ namespace Fidus
     /// What one solve gives.
     struct Result
     {
-      /// |omega - omega_exact| / (g/2) (omega_z in 3D).
+      /// Each particle's velocity U and angular velocity omega (only the
+      /// third component in 2D).
+      std::vector<Tensor<1, dim>> velocity;
+      std::vector<Tensor<1, 3>>   angular_velocity;
+      /// For the exact inclusion: |omega - omega_exact| / (g/2) (omega_z in
+      /// 3D).
       double omega_error = 0.;
-      /// |U| / (g a); the exact particle does not translate.
+      /// For the exact inclusion: |U| / (g a); the exact particle does not
+      /// translate.
       double translation = 0.;
-      /// ||u - u_exact||_{L2(fluid)} / (g a |fluid|^(1/2)).
+      /// For the exact inclusion: ||u - u_exact||_{L2(fluid)} / (g a
+      /// |fluid|^(1/2)).
       double velocity_error = 0.;
       /// Unknowns (fluid and rigid), active cells, cut cells.
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
