@@ -89,8 +89,9 @@ namespace
           const unsigned int               band_levels)
   {
     std::printf("| h/a | level | a / cell | approach speed | unknowns | cut "
-                "cells | wall s | residual |\n"
-                "|---|---|---|---|---|---|---|---|\n");
+                "cells | gap refinements | wall s | residual | U_0 + U_1 | "
+                "omega_0 |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const double gap : gaps)
       for (const unsigned int level : levels)
         {
@@ -105,16 +106,22 @@ namespace
           s.shear_rate   = 0.;
           s.global_level = level - band_levels;
           s.band_levels  = band_levels;
-          const auto r   = Solver::solve(s);
-          std::printf("| %g | %u | %.1f | %.6e | %u | %u | %.2f | %.1e |\n",
+          if (const char *v = std::getenv("GAP_CELLS"))
+            s.gap_cells = std::atof(v);
+          const auto r = Solver::solve(s);
+          std::printf("| %g | %u | %.1f | %.6e | %u | %u | %u | %.2f | %.1e | "
+                      "%.1e | %.1e |\n",
                       gap,
                       level,
                       a * (1 << level),
                       0.5 * (r.velocity[0][0] - r.velocity[1][0]),
                       r.n_dofs,
                       r.n_cut_cells,
+                      r.n_gap_refinements,
                       r.seconds,
-                      r.residual);
+                      r.residual,
+                      (r.velocity[0] + r.velocity[1]).norm(),
+                      r.angular_velocity[0][2]);
           std::fflush(stdout);
         }
   }

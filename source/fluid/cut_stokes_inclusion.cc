@@ -259,7 +259,8 @@ namespace Fidus
           }
       }
 
-    Triangulation<dim> tria;
+    Triangulation<dim> tria(
+      Triangulation<dim>::limit_level_difference_at_vertices);
     GridGenerator::hyper_cube(tria, 0., 1.);
     tria.refine_global(s.global_level);
     for (unsigned int l = 0; l < s.band_levels; ++l)
@@ -276,21 +277,72 @@ namespace Fidus
         tria.execute_coarsening_and_refinement();
       }
     // A cell cut by two surfaces would need two level sets in one
-    // quadrature. Refining such cells until each meets one surface was
-    // tried: the approach speed of a pushed pair then matched the resolved
-    // fictitious-domain reference to 1 %, but a mirror-symmetric pair
-    // turned and drifted (omega 1e-3 against U 3e-3), which is not
-    // understood; so a gap thinner than a cell is refused for now.
-    Result result;
-    for (const auto &cell : tria.active_cell_iterators())
+    // quadrature: refine it until each cut cell meets one surface, and with
+    // gap_cells > 0 refine the cut cells near another particle until the
+    // gap has cells across it. A cut cell must see its neighbours on its
+    // own level (ghost penalties; a hanging face towards a coarser solid
+    // cell would also pin its velocity to the FE_Nothing side): a finer
+    // neighbour refines it, a coarser one is refined. The triangulation
+    // keeps neighbouring levels within one of each other, without which
+    // the hanging-node constraints are wrong.
+    Result    result;
+    const int max_level =
+      static_cast<int>(s.global_level + s.band_levels + s.max_gap_levels);
+    for (unsigned int pass = 0; pass < 100000; ++pass)
       {
-        const Placement here = place(cell, particles);
-        if (!here.solid && here.n_cut >= 2)
-          throw std::invalid_argument(
-            "CutStokesInclusion: a cell of size " +
-            std::to_string(cell->extent_in_direction(0)) +
-            " is cut by two particles; allowed: gaps wider than the cells "
-            "around them (raise the level or the band)");
+        bool flagged = false;
+        for (const auto &cell : tria.active_cell_iterators())
+          {
+            const Placement here = place(cell, particles);
+            if (here.solid || here.n_cut == 0)
+              continue;
+            bool near_other = here.n_cut >= 2;
+            if (!near_other && s.gap_cells > 0.)
+              for (unsigned int k = 0; k < particles.size(); ++k)
+                if (k != here.particle &&
+                    (cell->center() - particles[k].center).norm() -
+                        particles[k].radius <
+                      (s.gap_cells + 0.5 * std::sqrt(dim)) *
+                        cell->extent_in_direction(0))
+                  near_other = true;
+            if (near_other)
+              {
+                if (cell->level() >= max_level)
+                  {
+                    if (here.n_cut >= 2)
+                      throw std::invalid_argument(
+                        "CutStokesInclusion: a cell of size " +
+                        std::to_string(cell->extent_in_direction(0)) +
+                        " is still cut by two particles after " +
+                        std::to_string(s.max_gap_levels) +
+                        " further levels; allowed: wider gaps or a larger "
+                        "max_gap_levels");
+                    continue;
+                  }
+                cell->set_refine_flag();
+                ++result.n_gap_refinements;
+                flagged = true;
+                continue;
+              }
+            for (const unsigned int f : cell->face_indices())
+              {
+                if (cell->at_boundary(f))
+                  continue;
+                if (cell->neighbor(f)->has_children())
+                  {
+                    cell->set_refine_flag();
+                    flagged = true;
+                  }
+                else if (cell->neighbor_is_coarser(f))
+                  {
+                    cell->neighbor(f)->set_refine_flag();
+                    flagged = true;
+                  }
+              }
+          }
+        if (!flagged)
+          break;
+        tria.execute_coarsening_and_refinement();
       }
 
     const unsigned int    n_rigid = dim * (dim + 1) / 2;
@@ -372,13 +424,15 @@ namespace Fidus
         const bool      cut  = here.n_cut > 0;
         cell->get_dof_indices(dofs);
         if (cut)
-          for (const auto i : dofs)
+          {
+            // Through the constraints: a hanging DoF of the cell passes its
+            // couplings on to the DoFs it hangs from, and a matrix entry
+            // missing from the pattern would be dropped without an error.
+            std::vector<types::global_dof_index> coupled = dofs;
             for (unsigned int k = 0; k < n_rigid; ++k)
-              {
-                const auto r = n_fluid + here.particle * n_rigid + k;
-                dsp.add(i, r);
-                dsp.add(r, i);
-              }
+              coupled.push_back(n_fluid + here.particle * n_rigid + k);
+            constraints.add_entries_local_to_global(coupled, dsp, true);
+          }
         for (const unsigned int f : cell->face_indices())
           {
             if (cell->at_boundary(f))
@@ -396,9 +450,11 @@ namespace Fidus
                 !(cut || place(neighbour, particles).n_cut > 0))
               continue;
             neighbour->get_dof_indices(neighbour_dofs);
-            for (const auto i : dofs)
-              for (const auto j : neighbour_dofs)
-                dsp.add(i, j);
+            std::vector<types::global_dof_index> coupled = dofs;
+            for (const auto j : neighbour_dofs)
+              if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
+                coupled.push_back(j);
+            constraints.add_entries_local_to_global(coupled, dsp, true);
           }
       }
     for (unsigned int p = 0; p < particles.size(); ++p)

@@ -90,6 +90,13 @@ namespace Fidus
       double ghost_pressure = 1e-3;
       /// Gauss points per direction of the cut-cell quadratures.
       unsigned int quadrature_points = 4;
+      /// A cut cell closer than this many of its own sizes to another
+      /// particle's surface is refined (so that a thin gap has cells across
+      /// it); 0 refines only cells cut by two particles, which must be.
+      double gap_cells = 0.;
+      /// At most this many levels beyond global_level + band_levels for
+      /// those refinements.
+      unsigned int max_gap_levels = 14;
     };
 
     /// What one solve gives.
@@ -110,6 +117,8 @@ namespace Fidus
       double velocity_error = 0.;
       /// Unknowns (fluid and rigid), active cells, cut cells.
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
+      /// Refinement flags set for thin gaps, over all passes.
+      unsigned int n_gap_refinements = 0;
       /// Finest cell size.
       double h = 0.;
       /// ||A x - b|| / ||b|| of the direct solve.
