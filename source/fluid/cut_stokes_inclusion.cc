@@ -280,11 +280,10 @@ namespace Fidus
     // quadrature: refine it until each cut cell meets one surface, and with
     // gap_cells > 0 refine the cut cells near another particle until the
     // gap has cells across it. A cut cell must see its neighbours on its
-    // own level (ghost penalties; a hanging face towards a coarser solid
-    // cell would also pin its velocity to the FE_Nothing side): a finer
-    // neighbour refines it, a coarser one is refined. The triangulation
-    // keeps neighbouring levels within one of each other, without which
-    // the hanging-node constraints are wrong.
+    // own level, since the ghost penalties are assembled on conforming
+    // faces only: a finer neighbour refines it, a coarser one is refined.
+    // The triangulation also keeps levels within one of each other at
+    // vertices, so that the refinement grades away from the surfaces.
     Result    result;
     const int max_level =
       static_cast<int>(s.global_level + s.band_levels + s.max_gap_levels);
