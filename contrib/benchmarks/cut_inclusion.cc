@@ -4,6 +4,7 @@
 // the velocity's L2 error over the fluid, and the cost. See
 // contrib/benchmarks/cut_inclusion.sh.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
@@ -125,14 +126,60 @@ namespace
           std::fflush(stdout);
         }
   }
+
+  /// Two force-free discs of radius a on the compressional axis of the
+  /// linear shear g (y - 1/2) e_x (g = 1), line of centres at -45 degrees
+  /// through the box centre, gap h: their closing speed
+  /// -n . (U_1 - U_0) divided by the undisturbed one, d / 2.
+  void
+  held(const double                     a,
+       const std::vector<unsigned int> &levels,
+       const std::vector<double>       &gaps,
+       const unsigned int               band_levels)
+  {
+    std::printf("| h/a | level | closing speed / undisturbed | unknowns | "
+                "cut cells | wall s | residual |\n"
+                "|---|---|---|---|---|---|---|\n");
+    for (const double gap : gaps)
+      for (const unsigned int level : levels)
+        {
+          using Solver = Fidus::CutStokesInclusion<2>;
+          Solver::Settings s;
+          const double     c = (2. * a + gap * a) / (2. * std::sqrt(2.));
+          s.particles        = {
+                   {dealii::Point<2>(0.5 - c, 0.5 + c), a, dealii::Tensor<1, 2>()},
+                   {dealii::Point<2>(0.5 + c, 0.5 - c), a, dealii::Tensor<1, 2>()}};
+          s.boundary     = Solver::Boundary::linear_shear;
+          s.shear_rate   = 1.;
+          s.global_level = level - band_levels;
+          s.band_levels  = band_levels;
+          if (const char *v = std::getenv("GAP_CELLS"))
+            s.gap_cells = std::atof(v);
+          const auto           r = Solver::solve(s);
+          dealii::Tensor<1, 2> n;
+          n[0]                 = 1. / std::sqrt(2.);
+          n[1]                 = -1. / std::sqrt(2.);
+          const double closing = -n * (r.velocity[1] - r.velocity[0]);
+          std::printf("| %g | %u | %.6e | %u | %u | %.2f | %.1e |\n",
+                      gap,
+                      level,
+                      closing / (std::sqrt(2.) * c),
+                      r.n_dofs,
+                      r.n_cut_cells,
+                      r.seconds,
+                      r.residual);
+          std::fflush(stdout);
+        }
+  }
 } // namespace
 
 int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  // cut_inclusion pair <a> "<levels>" "<gaps / a>" <band levels>
-  if (argc > 1 && std::string(argv[1]) == "pair")
+  // cut_inclusion pair|held <a> "<levels>" "<gaps / a>" <band levels>
+  if (argc > 1 &&
+      (std::string(argv[1]) == "pair" || std::string(argv[1]) == "held"))
     {
       std::vector<unsigned int> levels;
       std::vector<double>       gaps;
@@ -142,10 +189,12 @@ main(int argc, char **argv)
       std::istringstream in_gaps(argc > 4 ? argv[4] : "0.5 0.2 0.1 0.05");
       for (double g; in_gaps >> g;)
         gaps.push_back(g);
-      squeeze(argc > 2 ? std::atof(argv[2]) : 0.1,
-              levels,
-              gaps,
-              argc > 5 ? std::atoi(argv[5]) : 0);
+      (std::string(argv[1]) == "pair" ?
+         squeeze :
+         held)(argc > 2 ? std::atof(argv[2]) : 0.1,
+               levels,
+               gaps,
+               argc > 5 ? std::atoi(argv[5]) : 0);
       return 0;
     }
   // cut_inclusion <dim> <a> "<levels>" <N> <band levels>
