@@ -349,11 +349,19 @@ namespace Fidus
     const FESystem<dim>   nothing(FE_Nothing<dim>(), dim, FE_Nothing<dim>(), 1);
     hp::FECollection<dim> fe_collection(taylor_hood, nothing);
 
+    // Where each cell lies, once the mesh is final: every loop below asks.
+    std::vector<Placement> placement(tria.n_active_cells());
+    for (const auto &cell : tria.active_cell_iterators())
+      placement[cell->active_cell_index()] = place(cell, particles);
+    const auto placed = [&](const auto &cell) -> const Placement & {
+      return placement[cell->active_cell_index()];
+    };
+
     DoFHandler<dim> dof_handler(tria);
     result.h = 1.;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
-        const Placement here = place(cell, particles);
+        const Placement &here = placed(cell);
         cell->set_active_fe_index(here.solid ? 1 : 0);
         result.n_cut_cells += (!here.solid && here.n_cut > 0);
         result.h = std::min(result.h, cell->extent_in_direction(0));
@@ -419,8 +427,8 @@ namespace Fidus
       {
         if (cell->active_fe_index() != 0)
           continue;
-        const Placement here = place(cell, particles);
-        const bool      cut  = here.n_cut > 0;
+        const Placement &here = placed(cell);
+        const bool       cut  = here.n_cut > 0;
         cell->get_dof_indices(dofs);
         if (cut)
           {
@@ -446,7 +454,7 @@ namespace Fidus
               }
             const auto neighbour = cell->neighbor(f);
             if (neighbour->active_fe_index() != 0 ||
-                !(cut || place(neighbour, particles).n_cut > 0))
+                !(cut || placed(neighbour).n_cut > 0))
               continue;
             neighbour->get_dof_indices(neighbour_dofs);
             std::vector<types::global_dof_index> coupled = dofs;
@@ -517,8 +525,8 @@ namespace Fidus
         local_rhs = 0.;
         cell->get_dof_indices(dofs);
         std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
-        const Placement here = place(cell, particles);
-        const auto     &P    = particles[here.particle];
+        const Placement &here = placed(cell);
+        const auto      &P    = particles[here.particle];
         for (unsigned int k = 0; k < n_rigid; ++k)
           ext_dofs[n_local + k] = n_fluid + here.particle * n_rigid + k;
         if (here.n_cut == 0)
@@ -617,7 +625,7 @@ namespace Fidus
         {
           if (cell->active_fe_index() != 0)
             continue;
-          const bool cut = place(cell, particles).n_cut > 0;
+          const bool cut = placed(cell).n_cut > 0;
           for (const unsigned int f : cell->face_indices())
             {
               if (cell->at_boundary(f) || cell->neighbor(f)->has_children() ||
@@ -626,7 +634,7 @@ namespace Fidus
               const auto neighbour = cell->neighbor(f);
               if (neighbour->active_fe_index() != 0 ||
                   !(neighbour->index() > cell->index()) ||
-                  !(cut || place(neighbour, particles).n_cut > 0))
+                  !(cut || placed(neighbour).n_cut > 0))
                 continue;
               fe_face.reinit(cell, f);
               fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
@@ -709,32 +717,24 @@ namespace Fidus
       for (unsigned int i = 0; i < n_total; ++i)
         b[i] = rhs[i];
       SolverControl control;
-      try
-        {
-          TrilinosWrappers::SolverDirect direct(
-            control,
-            TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                           "Amesos_Mumps"));
-          direct.solve(trilinos_matrix, x, b);
-        }
-      catch (const ExceptionBase &)
-        {
-          try
-            {
-              TrilinosWrappers::SolverDirect direct(
-                control,
-                TrilinosWrappers::SolverDirect::AdditionalData(false,
-                                                               "Amesos_Klu"));
-              direct.solve(trilinos_matrix, x, b);
-            }
-          catch (const ExceptionBase &)
-            {
-              throw std::runtime_error(
-                "CutStokesInclusion: the direct solvers (MUMPS, then KLU) "
-                "failed; the system is numerically singular (are the ghost "
-                "penalties zero?)");
-            }
-        }
+      bool          solved = false;
+      for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
+        try
+          {
+            TrilinosWrappers::SolverDirect direct(
+              control,
+              TrilinosWrappers::SolverDirect::AdditionalData(false, name));
+            direct.solve(trilinos_matrix, x, b);
+            solved = true;
+            break;
+          }
+        catch (const ExceptionBase &)
+          {}
+      if (!solved)
+        throw std::runtime_error(
+          "CutStokesInclusion: the direct solvers (MUMPS, then KLU) failed; "
+          "the system is numerically singular (are the ghost penalties "
+          "zero?)");
       for (unsigned int i = 0; i < n_total; ++i)
         solution[i] = x[i];
     }
@@ -770,7 +770,7 @@ namespace Fidus
             if (cell->active_fe_index() != 0)
               continue;
             Quadrature<dim> quadrature = q_cell;
-            if (place(cell, particles).n_cut > 0)
+            if (placed(cell).n_cut > 0)
               {
                 generator.generate(
                   ReferenceLevelSet<dim>(cell->vertex(0),
