@@ -80,42 +80,54 @@ namespace
       }
   }
 
-  /// Two discs of radius a at 0.5 -/+ (a + h/2) pushed together by
-  /// forces +/-1 in the box at rest: half their closing speed, per gap h/a
-  /// and level.
+  /// Two discs of radius a, gap h, for each gap h/a and level:
+  /// - pushed (held = false): at 0.5 -/+ (a + h/2) on y = 1/2, pushed
+  ///   together by forces +/-1 in the box at rest; the speed printed is
+  ///   half their closing speed;
+  /// - held (held = true): force-free on the compressional axis of the
+  ///   linear shear g (y - 1/2) e_x (g = 1), line of centres at -45 degrees
+  ///   through the box centre; the speed printed is their closing speed
+  ///   -n . (U_1 - U_0) divided by the undisturbed one, d / 2.
+  /// Both scenes are point-symmetric about the box centre, so U_0 + U_1
+  /// vanishes.
   void
-  squeeze(const double                     a,
-          const std::vector<unsigned int> &levels,
-          const std::vector<double>       &gaps,
-          const unsigned int               band_levels)
+  two_discs(const bool                       held,
+            const double                     a,
+            const std::vector<unsigned int> &levels,
+            const std::vector<double>       &gaps,
+            const unsigned int               band_levels)
   {
-    std::printf("| h/a | level | a / cell | approach speed | unknowns | cut "
-                "cells | gap refinements | wall s | residual | U_0 + U_1 | "
-                "omega_0 |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|\n");
+    using Solver = Fidus::CutStokesInclusion<2>;
+    std::printf("| h/a | level | a / cell | %s | unknowns | cut cells | gap "
+                "refinements | wall s | residual | U_0 + U_1 | omega_0 |\n"
+                "|---|---|---|---|---|---|---|---|---|---|---|\n",
+                held ? "closing speed / undisturbed" : "approach speed");
     for (const double gap : gaps)
       for (const unsigned int level : levels)
         {
-          using Solver = Fidus::CutStokesInclusion<2>;
-          Solver::Settings     s;
-          const double         x = a + 0.5 * gap * a;
-          dealii::Tensor<1, 2> f;
-          f[0]           = 1.;
-          s.particles    = {{dealii::Point<2>(0.5 - x, 0.5), a, f},
-                            {dealii::Point<2>(0.5 + x, 0.5), a, -f}};
+          const double         d = 2. * a + gap * a;
+          dealii::Tensor<1, 2> n; // from disc 0 to disc 1
+          n[0] = held ? 1. / std::sqrt(2.) : 1.;
+          n[1] = held ? -1. / std::sqrt(2.) : 0.;
+          const dealii::Point<2> middle(0.5, 0.5);
+          const auto             force = held ? 0. * n : n;
+          Solver::Settings       s;
+          s.particles    = {{middle - 0.5 * d * n, a, force},
+                            {middle + 0.5 * d * n, a, -force}};
           s.boundary     = Solver::Boundary::linear_shear;
-          s.shear_rate   = 0.;
+          s.shear_rate   = held ? 1. : 0.;
           s.global_level = level - band_levels;
           s.band_levels  = band_levels;
           if (const char *v = std::getenv("GAP_CELLS"))
             s.gap_cells = std::atof(v);
-          const auto r = Solver::solve(s);
+          const auto   r       = Solver::solve(s);
+          const double closing = -n * (r.velocity[1] - r.velocity[0]);
           std::printf("| %g | %u | %.1f | %.6e | %u | %u | %u | %.2f | %.1e | "
                       "%.1e | %.1e |\n",
                       gap,
                       level,
                       a * (1 << level),
-                      0.5 * (r.velocity[0][0] - r.velocity[1][0]),
+                      held ? closing / (0.5 * d) : 0.5 * closing,
                       r.n_dofs,
                       r.n_cut_cells,
                       r.n_gap_refinements,
@@ -123,51 +135,6 @@ namespace
                       r.residual,
                       (r.velocity[0] + r.velocity[1]).norm(),
                       r.angular_velocity[0][2]);
-          std::fflush(stdout);
-        }
-  }
-
-  /// Two force-free discs of radius a on the compressional axis of the
-  /// linear shear g (y - 1/2) e_x (g = 1), line of centres at -45 degrees
-  /// through the box centre, gap h: their closing speed
-  /// -n . (U_1 - U_0) divided by the undisturbed one, d / 2.
-  void
-  held(const double                     a,
-       const std::vector<unsigned int> &levels,
-       const std::vector<double>       &gaps,
-       const unsigned int               band_levels)
-  {
-    std::printf("| h/a | level | closing speed / undisturbed | unknowns | "
-                "cut cells | wall s | residual |\n"
-                "|---|---|---|---|---|---|---|\n");
-    for (const double gap : gaps)
-      for (const unsigned int level : levels)
-        {
-          using Solver = Fidus::CutStokesInclusion<2>;
-          Solver::Settings s;
-          const double     c = (2. * a + gap * a) / (2. * std::sqrt(2.));
-          s.particles        = {
-                   {dealii::Point<2>(0.5 - c, 0.5 + c), a, dealii::Tensor<1, 2>()},
-                   {dealii::Point<2>(0.5 + c, 0.5 - c), a, dealii::Tensor<1, 2>()}};
-          s.boundary     = Solver::Boundary::linear_shear;
-          s.shear_rate   = 1.;
-          s.global_level = level - band_levels;
-          s.band_levels  = band_levels;
-          if (const char *v = std::getenv("GAP_CELLS"))
-            s.gap_cells = std::atof(v);
-          const auto           r = Solver::solve(s);
-          dealii::Tensor<1, 2> n;
-          n[0]                 = 1. / std::sqrt(2.);
-          n[1]                 = -1. / std::sqrt(2.);
-          const double closing = -n * (r.velocity[1] - r.velocity[0]);
-          std::printf("| %g | %u | %.6e | %u | %u | %.2f | %.1e |\n",
-                      gap,
-                      level,
-                      closing / (std::sqrt(2.) * c),
-                      r.n_dofs,
-                      r.n_cut_cells,
-                      r.seconds,
-                      r.residual);
           std::fflush(stdout);
         }
   }
@@ -189,12 +156,11 @@ main(int argc, char **argv)
       std::istringstream in_gaps(argc > 4 ? argv[4] : "0.5 0.2 0.1 0.05");
       for (double g; in_gaps >> g;)
         gaps.push_back(g);
-      (std::string(argv[1]) == "pair" ?
-         squeeze :
-         held)(argc > 2 ? std::atof(argv[2]) : 0.1,
-               levels,
-               gaps,
-               argc > 5 ? std::atoi(argv[5]) : 0);
+      two_discs(std::string(argv[1]) == "held",
+                argc > 2 ? std::atof(argv[2]) : 0.1,
+                levels,
+                gaps,
+                argc > 5 ? std::atoi(argv[5]) : 0);
       return 0;
     }
   // cut_inclusion <dim> <a> "<levels>" <N> <band levels>

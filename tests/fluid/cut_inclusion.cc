@@ -138,53 +138,42 @@ main(int argc, char **argv)
                 1e-3);
   }
 
-  bool refused = false;
-  try
-    {
-      Solver::Settings bad;
-      bad.particles = {
-        {dealii::Point<2>(0.5, 0.5), 0., dealii::Tensor<1, 2>()}};
-      Solver::solve(bad);
-    }
-  catch (const std::invalid_argument &)
-    {
-      refused = true;
-    }
-  check_range("a radius of 0 refused", refused ? 1. : 0., 1., 1.);
-  refused = false;
-  try
-    {
-      Solver::Settings bad;
-      bad.boundary  = Solver::Boundary::linear_shear;
-      bad.particles = {
-        {dealii::Point<2>(0.4, 0.5), 0.1, dealii::Tensor<1, 2>()},
-        {dealii::Point<2>(0.59, 0.5), 0.1, dealii::Tensor<1, 2>()}};
-      Solver::solve(bad);
-    }
-  catch (const std::invalid_argument &)
-    {
-      refused = true;
-    }
-  check_range("overlapping particles refused", refused ? 1. : 0., 1., 1.);
-  refused = false;
-  try
-    {
-      Solver::Settings bad;
-      bad.boundary       = Solver::Boundary::linear_shear;
-      bad.global_level   = 4;
-      bad.max_gap_levels = 1;
-      bad.particles      = {
-             {dealii::Point<2>(0.39, 0.5), 0.1, dealii::Tensor<1, 2>()},
-             {dealii::Point<2>(0.6, 0.5), 0.1, dealii::Tensor<1, 2>()}};
-      Solver::solve(bad);
-    }
-  catch (const std::invalid_argument &)
-    {
-      refused = true;
-    }
-  check_range("a gap still cut twice at the last allowed level refused",
-              refused ? 1. : 0.,
-              1.,
-              1.);
+  // 1 if solve() refuses @p bad with std::invalid_argument, else 0.
+  const auto refused = [](const Solver::Settings &bad) {
+    try
+      {
+        Solver::solve(bad);
+      }
+    catch (const std::invalid_argument &)
+      {
+        return 1.;
+      }
+    return 0.;
+  };
+  const dealii::Tensor<1, 2> no_force;
+  {
+    Solver::Settings bad;
+    bad.particles = {{dealii::Point<2>(0.5, 0.5), 0., no_force}};
+    check_range("a radius of 0 refused", refused(bad), 1., 1.);
+  }
+  {
+    Solver::Settings bad;
+    bad.boundary  = Solver::Boundary::linear_shear;
+    bad.particles = {{dealii::Point<2>(0.4, 0.5), 0.1, no_force},
+                     {dealii::Point<2>(0.59, 0.5), 0.1, no_force}};
+    check_range("overlapping particles refused", refused(bad), 1., 1.);
+  }
+  {
+    Solver::Settings bad;
+    bad.boundary       = Solver::Boundary::linear_shear;
+    bad.global_level   = 4;
+    bad.max_gap_levels = 1;
+    bad.particles      = {{dealii::Point<2>(0.39, 0.5), 0.1, no_force},
+                          {dealii::Point<2>(0.6, 0.5), 0.1, no_force}};
+    check_range("a gap still cut twice at the last allowed level refused",
+                refused(bad),
+                1.,
+                1.);
+  }
   return exit_code();
 }
