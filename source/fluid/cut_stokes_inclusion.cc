@@ -279,11 +279,11 @@ namespace Fidus
     // A cell cut by two surfaces would need two level sets in one
     // quadrature: refine it until each cut cell meets one surface, and with
     // gap_cells > 0 refine the cut cells near another particle until the
-    // gap has cells across it. A cut cell must see its neighbours on its
-    // own level, since the ghost penalties are assembled on conforming
-    // faces only: a finer neighbour refines it, a coarser one is refined.
-    // The triangulation also keeps levels within one of each other at
-    // vertices, so that the refinement grades away from the surfaces.
+    // gap has cells across it. Only the cells at the gap are refined: the
+    // ghost penalties are assembled across hanging faces too, so a cut
+    // cell may have neighbours one level coarser or finer. The
+    // triangulation keeps levels within one of each other at vertices, so
+    // that the refinement grades away from the gap.
     Result    result;
     const int max_level =
       static_cast<int>(s.global_level + s.band_levels + s.max_gap_levels);
@@ -304,40 +304,23 @@ namespace Fidus
                       (s.gap_cells + 0.5 * std::sqrt(dim)) *
                         cell->extent_in_direction(0))
                   near_other = true;
-            if (near_other)
+            if (!near_other)
+              continue;
+            if (cell->level() >= max_level)
               {
-                if (cell->level() >= max_level)
-                  {
-                    if (here.n_cut >= 2)
-                      throw std::invalid_argument(
-                        "CutStokesInclusion: a cell of size " +
-                        std::to_string(cell->extent_in_direction(0)) +
-                        " is still cut by two particles after " +
-                        std::to_string(s.max_gap_levels) +
-                        " further levels; allowed: wider gaps or a larger "
-                        "max_gap_levels");
-                    continue;
-                  }
-                cell->set_refine_flag();
-                ++result.n_gap_refinements;
-                flagged = true;
+                if (here.n_cut >= 2)
+                  throw std::invalid_argument(
+                    "CutStokesInclusion: a cell of size " +
+                    std::to_string(cell->extent_in_direction(0)) +
+                    " is still cut by two particles after " +
+                    std::to_string(s.max_gap_levels) +
+                    " further levels; allowed: wider gaps or a larger "
+                    "max_gap_levels");
                 continue;
               }
-            for (const unsigned int f : cell->face_indices())
-              {
-                if (cell->at_boundary(f))
-                  continue;
-                if (cell->neighbor(f)->has_children())
-                  {
-                    cell->set_refine_flag();
-                    flagged = true;
-                  }
-                else if (cell->neighbor_is_coarser(f))
-                  {
-                    cell->neighbor(f)->set_refine_flag();
-                    flagged = true;
-                  }
-              }
+            cell->set_refine_flag();
+            ++result.n_gap_refinements;
+            flagged = true;
           }
         if (!flagged)
           break;
@@ -408,7 +391,7 @@ namespace Fidus
     constraints.close();
 
     // Cells with fluid, and the faces between two of them where at least
-    // one is cut: the ghost-penalty faces. They must not be hanging.
+    // one is cut: the ghost-penalty faces.
     const MappingCartesian<dim> mapping;
     DynamicSparsityPattern      dsp(n_total, n_total);
     {
@@ -442,16 +425,9 @@ namespace Fidus
           }
         for (const unsigned int f : cell->face_indices())
           {
-            if (cell->at_boundary(f))
+            // A face with a finer neighbour is seen from the finer side.
+            if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
               continue;
-            if (cell->neighbor(f)->has_children() ||
-                cell->neighbor_is_coarser(f))
-              {
-                if (cut)
-                  throw std::logic_error("CutStokesInclusion: a cut cell has "
-                                         "a hanging face; widen the band");
-                continue;
-              }
             const auto neighbour = cell->neighbor(f);
             if (neighbour->active_fe_index() != 0 ||
                 !(cut || placed(neighbour).n_cut > 0))
@@ -616,6 +592,7 @@ namespace Fidus
                                      update_quadrature_points;
       FEFaceValues<dim> fe_face(mapping, taylor_hood, q_face, face_flags);
       FEFaceValues<dim> fe_neighbour(mapping, taylor_hood, q_face, face_flags);
+      FESubfaceValues<dim> fe_coarser(mapping, taylor_hood, q_face, face_flags);
       std::vector<types::global_dof_index>     face_dofs;
       std::vector<std::array<unsigned int, 2>> local_of(n_local);
       FullMatrix<double>                       face_matrix;
@@ -628,16 +605,32 @@ namespace Fidus
           const bool cut = placed(cell).n_cut > 0;
           for (const unsigned int f : cell->face_indices())
             {
-              if (cell->at_boundary(f) || cell->neighbor(f)->has_children() ||
-                  cell->neighbor_is_coarser(f))
+              // Each face once: a conforming one from the cell of lower
+              // index, a hanging one from its finer side, where the coarser
+              // cell's values are taken on the subface.
+              if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
                 continue;
               const auto neighbour = cell->neighbor(f);
+              const bool coarser   = cell->neighbor_is_coarser(f);
               if (neighbour->active_fe_index() != 0 ||
-                  !(neighbour->index() > cell->index()) ||
+                  (!coarser && !(neighbour->index() > cell->index())) ||
                   !(cut || placed(neighbour).n_cut > 0))
                 continue;
               fe_face.reinit(cell, f);
-              fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
+              if (coarser)
+                {
+                  const auto face_and_subface =
+                    cell->neighbor_of_coarser_neighbor(f);
+                  fe_coarser.reinit(neighbour,
+                                    face_and_subface.first,
+                                    face_and_subface.second);
+                }
+              else
+                fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
+              const FEFaceValuesBase<dim> &fe_other =
+                coarser ?
+                  static_cast<const FEFaceValuesBase<dim> &>(fe_coarser) :
+                  static_cast<const FEFaceValuesBase<dim> &>(fe_neighbour);
               cell->get_dof_indices(dofs);
               neighbour->get_dof_indices(neighbour_dofs);
               face_dofs = dofs;
@@ -656,11 +649,13 @@ namespace Fidus
                 }
               const unsigned int n_face = face_dofs.size();
               face_matrix.reinit(n_face, n_face);
-              const double h = cell->extent_in_direction(0);
+              // Across a hanging face, the mean of the two cells' sizes.
+              const double h = 0.5 * (cell->extent_in_direction(0) +
+                                      neighbour->extent_in_direction(0));
               for (unsigned int q = 0; q < q_face.size(); ++q)
                 {
                   if ((fe_face.quadrature_point(q) -
-                       fe_neighbour.quadrature_point(q))
+                       fe_other.quadrature_point(q))
                         .norm() > 1e-12 * h)
                     throw std::logic_error(
                       "CutStokesInclusion: face quadrature "
@@ -671,8 +666,8 @@ namespace Fidus
                   dp.assign(n_face, 0.);
                   for (unsigned int side = 0; side < 2; ++side)
                     {
-                      const FEFaceValues<dim> &fv =
-                        side == 0 ? fe_face : fe_neighbour;
+                      const FEFaceValuesBase<dim> &fv =
+                        side == 0 ? fe_face : fe_other;
                       const double sign = side == 0 ? 1. : -1.;
                       for (unsigned int i = 0; i < n_local; ++i)
                         {
