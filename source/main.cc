@@ -107,6 +107,14 @@ main(int argc, char **argv)
                       << parameters.n_particles() << " particles)\n";
           return 0;
         }
+      // The cut element's sparse direct solve is serial.
+      if (parameters.fluid_model == FluidModel::cut_finite_element &&
+          dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        throw InputError(
+          "entry 'Fluid/Model' is 'cut finite element' on " +
+          std::to_string(
+            dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) +
+          " MPI ranks; allowed: 1 rank (its direct solver is serial)");
       // A resumed run checks its checkpoint before it writes anything.
       std::unique_ptr<Checkpoint::ResumePoint> resume_point;
       if (resume)

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The exact rigid inclusion solved with the cut finite element
-# (Fidus::CutStokesInclusion, doc/fluid.md "A cut finite element for the
-# inclusion"): N seeded positions of a particle of radius a in the middle of
-# the unit box (x, y in [0.4, 0.6]), for each maximum level, the largest and
-# mean relative omega error and |U| / (g a) (exact 0), the velocity's L2
-# error over the fluid, the unknowns, the cut cells and the wall seconds of
+# (Fidus::CutStokesInclusion, doc/cut_element.md "Fixed particles"): N
+# seeded positions of a particle of radius a in the middle of the unit box
+# (x, y in [0.4, 0.6]), for each maximum level, the largest and mean
+# relative omega error and |U| / (g a) (exact 0), the velocity's L2 error
+# over the fluid, the unknowns, the cut cells and the wall seconds of
 # one solve (mesh, assembly, sparse direct factorisation). Not a test.
 # Usage: contrib/benchmarks/cut_inclusion.sh [a, default 0.1] [levels,
 #   default "4 5 6 7 8"] [N, default 12] [band levels, default 2]

@@ -226,9 +226,13 @@ namespace Fidus
 
     prm.enter_subsection("Fluid");
     {
-      fluid_model           = prm.get("Model") == "fictitious domain" ?
-                                FluidModel::fictitious_domain :
-                                FluidModel::undisturbed_shear;
+      const std::string model = prm.get("Model");
+      fluid_model =
+        model == "fictitious domain" ? FluidModel::fictitious_domain :
+        model == "undisturbed shear" ? FluidModel::undisturbed_shear :
+                                       FluidModel::cut_finite_element;
+      cut_minimum_gap       = prm.get_double("Cut minimum gap");
+      cut_gap_cells         = prm.get_double("Cut gap cells");
       viscosity             = prm.get_double("Viscosity");
       penalty_factor        = prm.get_double("Penalty factor");
       velocity_degree       = prm.get_integer("Velocity degree");
@@ -649,16 +653,19 @@ namespace Fidus
     require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
 
     if (!external_forces.empty() &&
-        (fluid_model != FluidModel::fictitious_domain ||
+        (fluid_model == FluidModel::undisturbed_shear ||
          boundary_condition == BoundaryCondition::exact_rigid_inclusion))
       throw InputError(
         "entry 'Particles/External force' is set, but the fluid is " +
-        std::string(fluid_model != FluidModel::fictitious_domain ?
+        std::string(fluid_model == FluidModel::undisturbed_shear ?
                       "'Fluid/Model = undisturbed shear'" :
                       "the exact rigid inclusion") +
         "; allowed: external forces with 'Fluid/Model = fictitious "
-        "domain' and a boundary condition other than 'exact rigid "
-        "inclusion'");
+        "domain' or 'cut finite element' and a boundary condition other "
+        "than 'exact rigid inclusion'");
+
+    if (fluid_model == FluidModel::cut_finite_element)
+      check_cut_finite_element();
 
     if (!(penalty_factor > 1.))
       throw InputError("entry 'Fluid/Penalty factor' has the value " +
@@ -862,5 +869,44 @@ namespace Fidus
               throw InputError(m.str());
             }
       }
+  }
+
+
+  void
+  Parameters::check_cut_finite_element() const
+  {
+    const std::string model = "'Fluid/Model = cut finite element'";
+    if (boundary_condition != BoundaryCondition::linear_shear)
+      throw InputError("entry 'Domain/Boundary condition' is not 'linear "
+                       "shear' with " +
+                       model +
+                       "; allowed: 'linear shear' (the cut element's box "
+                       "has the shear's velocity on every face)");
+    for (unsigned int d = 0; d < dimension; ++d)
+      if (lower_left[d] != 0. || upper_right[d] != 1.)
+        {
+          std::ostringstream m;
+          m << "entries 'Domain/Lower left' and 'Domain/Upper right' give "
+            << lower_left[d] << " to " << upper_right[d] << " in "
+            << "xyz"[d] << " with " << model
+            << "; allowed: the unit box, 0 to 1 in every direction";
+          throw InputError(m.str());
+        }
+    if (!(cut_minimum_gap > 0.))
+      throw InputError("entry 'Fluid/Cut minimum gap' has the value " +
+                       std::to_string(cut_minimum_gap) +
+                       "; allowed: a value > 0 (the cut element cannot "
+                       "solve touching particles)");
+    if (lubrication)
+      throw InputError("entry 'Fluid/Lubrication correction' is true with " +
+                       model +
+                       "; allowed: false (the cut element resolves the "
+                       "gaps down to Fluid/Cut minimum gap)");
+    if (field_output_interval > 0)
+      throw InputError("entry 'Output/Field output interval' is " +
+                       std::to_string(field_output_interval) + " with " +
+                       model +
+                       "; allowed: 0 (the cut element writes no fields "
+                       "yet)");
   }
 } // namespace Fidus

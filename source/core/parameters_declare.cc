@@ -63,11 +63,32 @@ namespace Fidus
       prm.declare_entry(
         "Model",
         "fictitious domain",
-        Patterns::Selection("fictitious domain|undisturbed shear"),
+        Patterns::Selection(
+          "fictitious domain|undisturbed shear|cut finite element"),
         "'fictitious domain': Stokes with penalised viscosity and a rigidity "
         "multiplier on an adaptive mesh. 'undisturbed shear': particles move "
         "with the undisturbed shear flow at their centre (no mesh, no "
-        "hydrodynamic interaction).");
+        "hydrodynamic interaction). 'cut finite element': Stokes in the "
+        "fluid outside the particles only, their rigid motions imposed by "
+        "Nitsche's method, on a mesh built for every solve (from Mesh "
+        "refinement/Minimum level to Maximum level at the surfaces, thin "
+        "gaps further); a serial sparse direct solve, for few particles in "
+        "the unit box in linear shear (doc/fluid.md).");
+      prm.declare_entry(
+        "Cut minimum gap",
+        "0.01",
+        Patterns::Double(0.),
+        "With 'cut finite element': the fluid solve sees every gap between "
+        "two particles at least this times the smaller radius, and every "
+        "gap to the box this times the radius, by shrinking the radii it "
+        "gives the fluid (the contact model keeps the true radii); > 0.");
+      prm.declare_entry(
+        "Cut gap cells",
+        "2",
+        Patterns::Double(0.),
+        "With 'cut finite element': the cut cells near another particle are "
+        "refined until this many cells span the gap (0: only until no cell "
+        "is cut by two surfaces).");
       prm.declare_entry("Viscosity",
                         "1",
                         Patterns::Double(0.),

@@ -27,7 +27,8 @@ namespace Fidus
                                           "cavity",
                                           "exact rigid inclusion"};
     const char *const fluid_names[]    = {"fictitious domain",
-                                          "undisturbed shear"};
+                                          "undisturbed shear",
+                                          "cut finite element"};
 
     std::string
     read_file(const std::string &name)

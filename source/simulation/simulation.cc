@@ -116,6 +116,7 @@ namespace Fidus
     , box(parameters)
     , shear(parameters.shear_rate)
     , fictitious(parameters.fluid_model == FluidModel::fictitious_domain)
+    , cut(parameters.fluid_model == FluidModel::cut_finite_element)
     , n(parameters.n_particles())
     , contact_settings(contact_settings_of(parameters, dim))
     , projector(contact_settings)
@@ -301,8 +302,8 @@ namespace Fidus
     s.max_contact_iterations  = state.totals.max_contact_iterations;
     s.max_shared_cells        = state.totals.max_shared_cells;
     s.max_shared_residual     = state.totals.max_shared_residual;
-    s.n_cells                 = fictitious ? tria->n_global_active_cells() : 0;
-    s.n_dofs                  = fictitious ? solver->n_dofs() : 0;
+    s.n_cells = fictitious ? tria->n_global_active_cells() : cut_cells;
+    s.n_dofs  = fictitious ? solver->n_dofs() : cut_dofs;
     s.multigrid_galerkin_defect =
       fictitious ? solver->multigrid_galerkin_defect() : 0.;
     s.wall_seconds   = elapsed_wall_seconds();

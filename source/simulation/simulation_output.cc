@@ -45,6 +45,14 @@ namespace Fidus
         if (g != g_now)
           hydrodynamic.scale(g / g_now);
       }
+    else if (cut)
+      {
+        // The cut element's last solve (CutStokesInclusion's stresslets);
+        // the walls' traction is not measured (NaN).
+        hydrodynamic = cut_stress;
+        if (g != g_now)
+          hydrodynamic.scale(g / g_now);
+      }
     else
       {
         // Free-draining particles carry no stress of their own: the
@@ -146,24 +154,25 @@ namespace Fidus
       std::max(totals.max_shared_residual, fluid_stats.shared_residual);
 
     const double cells =
-      fictitious ? double(tria->n_global_active_cells()) : 0.;
-    const double        dofs = fictitious ? double(solver->n_dofs()) : 0.;
-    std::vector<double> row  = {double(s.step),
-                                s.time,
-                                dt,
-                                cells,
-                                dofs,
-                                double(fluid_stats.uzawa_iterations),
-                                double(fluid_stats.linear_iterations),
-                                fluid_stats.rigidity_residual,
+      fictitious ? double(tria->n_global_active_cells()) : double(cut_cells);
+    const double dofs =
+      fictitious ? double(solver->n_dofs()) : double(cut_dofs);
+    std::vector<double> row = {double(s.step),
+                               s.time,
+                               dt,
+                               cells,
+                               dofs,
+                               double(fluid_stats.uzawa_iterations),
+                               double(fluid_stats.linear_iterations),
+                               fluid_stats.rigidity_residual,
                                std::isfinite(gap) ? gap : 0.,
-                                double(n_active),
-                                double(n_glued),
-                                elapsed_wall_seconds(),
-                                double(remeshed),
-                                double(contact_iterations),
-                                double(fluid_stats.shared_cells),
-                                fluid_stats.shared_residual};
+                               double(n_active),
+                               double(n_glued),
+                               elapsed_wall_seconds(),
+                               double(remeshed),
+                               double(contact_iterations),
+                               double(fluid_stats.shared_cells),
+                               fluid_stats.shared_residual};
     for (const double v : stress.values())
       row.push_back(v);
     row.push_back(

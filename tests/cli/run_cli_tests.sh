@@ -43,6 +43,17 @@ expect_error() {
   fi
 }
 
+cut_fluid() { printf 'subsection Fluid\n  set Model = cut finite element\n%s\nend\n' "$1"; }
+expect_error "cut element with sliding walls" "Domain/Boundary condition' is not 'linear shear' with 'Fluid/Model = cut finite element'; allowed: 'linear shear'" \
+  "$(base; cut_fluid ''; printf 'subsection Domain\n  set Boundary condition = sliding walls\nend\n')"
+expect_error "cut element outside the unit box" "Domain/Upper right' give 0 to 2 in x with 'Fluid/Model = cut finite element'; allowed: the unit box" \
+  "$(base; cut_fluid ''; printf 'subsection Domain\n  set Upper right = 2, 1\nend\n')"
+expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value 0.000000; allowed: a value > 0" \
+  "$(base; cut_fluid '  set Cut minimum gap = 0')"
+expect_error "cut element with lubrication" "Fluid/Lubrication correction' is true with 'Fluid/Model = cut finite element'; allowed: false" \
+  "$(base; cut_fluid '  set Lubrication correction = true')"
+expect_error "cut element with field output" "Output/Field output interval' is 5 with 'Fluid/Model = cut finite element'; allowed: 0" \
+  "$(base; cut_fluid ''; printf 'subsection Output\n  set Field output interval = 5\nend\n')"
 expect_error "overlapping particles" "particles 0 and 1 overlap" \
   "$(base | sed 's/0.451, 0.51; 0.549, 0.49/0.45, 0.5; 0.5, 0.5/')"
 expect_error "overlap across a periodic face" "particles 0 and 1 overlap by 0.06.*(nearest periodic image" \
@@ -211,6 +222,18 @@ if [ $status -eq 0 ] && [ $steps -eq 12 ] && [ $full_ok = 1 ] \
    && grep -q "^fidus: warning: step 9, .*\[10 such warnings (rigidity not reached); further ones are counted" stderr.txt \
    && grep -q "^fidus: warning: 12 warnings (rigidity not reached) in this run, 10 of them written above; the largest value was $worst$" stderr.txt; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: repeated warnings on 2 ranks (status $status, steps $steps, expected worst $worst)"; cat stderr.txt; fi
+
+# The cut element's sparse direct solve is serial: on 2 ranks the run is
+# refused with one message, before anything is written.
+{ base; cut_fluid ''; } > cut.prm
+rm -rf "$work/out"
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+  mpirun -np 2 "$fidus" cut.prm > /dev/null 2> stderr.txt
+status=$?
+# (mpirun adds its own lines about the exit status; fidus writes one.)
+if [ $status -ne 0 ] && [ ! -e "$work/out" ] && [ "$(grep -c '^fidus:' stderr.txt)" -eq 1 ] \
+   && grep -q "Fluid/Model' is 'cut finite element' on 2 MPI ranks; allowed: 1 rank" stderr.txt; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: cut element on 2 ranks (status $status)"; cat stderr.txt; fi
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]

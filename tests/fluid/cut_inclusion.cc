@@ -7,6 +7,8 @@
 //   predictor stalls near 1e-4 there, doc/uzawa.md) and falls at an observed
 //   order of at least 2.5 from level 5 to level 7, and |U| / (g a) is below
 //   2e-6;
+// - the stresslet from the surface traction converges to the exact
+//   4 pi eta a^2 E: within 1e-4 at level 7, at an order of at least 2;
 // - a particle whose surface lies 1e-10 beyond a grid line (fluid slivers of
 //   relative size 1e-8 in the cut cells) is solved as accurately, thanks to
 //   the ghost penalties;
@@ -35,7 +37,7 @@ main(int argc, char **argv)
   const std::vector<dealii::Point<2>> centers = {{0.5132, 0.4871},
                                                  {0.4417, 0.5523},
                                                  {0.5609, 0.4288}};
-  std::vector<double>                 omega(3, 0.), translation(3, 0.);
+  std::vector<double> omega(3, 0.), translation(3, 0.), stresslet(3, 0.);
   for (unsigned int k = 0; k < 3; ++k)
     for (const auto &c : centers)
       {
@@ -46,12 +48,23 @@ main(int argc, char **argv)
         const auto r   = Solver::solve(s);
         omega[k]       = std::max(omega[k], r.omega_error);
         translation[k] = std::max(translation[k], r.translation);
+        stresslet[k]   = std::max(stresslet[k], r.stresslet_error);
       }
   check_range("level 7: largest relative omega error", omega[2], 0., 1e-6);
   check_range("level 7: largest |U| / (g a)", translation[2], 0., 2e-6);
   check_range("observed order of the omega error, levels 5 to 7",
               std::log2(omega[0] / omega[2]) / 2.,
               2.5,
+              10.);
+  // The stresslet from the surface traction against the exact one, 4 pi
+  // eta a^2 E (its deviatoric part): the rheology's input.
+  check_range("level 7: largest relative stresslet error",
+              stresslet[2],
+              0.,
+              1e-4);
+  check_range("observed order of the stresslet error, levels 5 to 7",
+              std::log2(stresslet[0] / stresslet[2]) / 2.,
+              2.,
               10.);
 
   Solver::Settings sliver;

@@ -25,7 +25,10 @@ namespace Fidus
   enum class FluidModel
   {
     fictitious_domain,
-    undisturbed_shear
+    undisturbed_shear,
+    /// The fluid outside the particles only, rigid motions by Nitsche's
+    /// method (CutStokesInclusion): serial, unit box, linear shear.
+    cut_finite_element
   };
 
   /// Contact model (numerics section 3).
@@ -88,6 +91,11 @@ namespace Fidus
     void
     check_scene() const;
 
+    /// What 'Fluid/Model = cut finite element' needs of the scene (called
+    /// by check_scene()).
+    void
+    check_cut_finite_element() const;
+
     /// Number of particles.
     unsigned int
     n_particles() const
@@ -129,6 +137,11 @@ namespace Fidus
     /// Width of the smoothed solid layer in finest cells (Fluid/Solid
     /// smoothing); 0 samples the solid sharply.
     double solid_smoothing = 0.;
+    /// Fluid/Cut minimum gap: the cut element's fluid sees every gap at
+    /// least this times the smaller radius (wall gaps: the radius).
+    double cut_minimum_gap = 0.01;
+    /// Fluid/Cut gap cells: cells across a thin gap of the cut element.
+    double cut_gap_cells = 2.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
     bool lubrication = false;

@@ -2,6 +2,7 @@
 #define fidus_fluid_cut_stokes_inclusion_h
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <vector>
 
@@ -14,8 +15,9 @@ namespace Fidus
    * the unit box: the exact rigid inclusion (one force- and torque-free
    * particle in linear shear, ExactRigidInclusion), the reference case of
    * the converged-answers work, and a few particles pushed by forces or
-   * carried by a shear, for the squeeze of a thin gap (doc/fluid.md, "A cut
-   * finite element for the inclusion").
+   * carried by a shear, for the squeeze of a thin gap; and, with the
+   * particles where the time loop has them, the predictor of 'Fluid/Model
+   * = cut finite element' (doc/cut_element.md).
    *
    * The fictitious-domain predictor of the time loop holds the cut cells
    * rigid, so a particle acts like a body between itself and the staircase
@@ -32,8 +34,9 @@ namespace Fidus
    * Taylor-Hood). Cells inside the particle carry no unknowns
    * (FE_Nothing). The box boundary takes the exact velocity.
    *
-   * It solves one serial system with a sparse direct solver: a verification
-   * of what a cut element buys, not yet the predictor of the time loop.
+   * It solves one serial system with a sparse direct solver, on a mesh
+   * built for the particles given: cheap for few particles in 2D, the
+   * limit in 3D.
    */
   template <int dim>
   class CutStokesInclusion
@@ -112,9 +115,21 @@ namespace Fidus
       /// For the exact inclusion: |U| / (g a); the exact particle does not
       /// translate.
       double translation = 0.;
+      /// For the exact inclusion: |dev S - S_exact| / |S_exact| (Frobenius
+      /// norms; the isotropic part depends on the reference pressure) with the unbounded stresslet S_exact = 4 pi eta a^2 E in 2D
+      /// and (20/3) pi eta a^3 E in 3D, E the far field's strain rate.
+      double stresslet_error = 0.;
       /// For the exact inclusion: ||u - u_exact||_{L2(fluid)} / (g a
       /// |fluid|^(1/2)).
       double velocity_error = 0.;
+      /// Each particle's stresslet: int over its surface of
+      /// sym((x - X) (x) t), t the consistent traction the fluid exerts on
+      /// it (the one its force and torque balance), with the pressure
+      /// taken relative to the fluid's mean (doc/cut_element.md, "The
+      /// stress"). In 2D per unit length.
+      std::vector<SymmetricTensor<2, dim>> stresslets;
+      /// Mean pressure over the fluid, and the fluid's volume.
+      double fluid_pressure = 0., fluid_volume = 0.;
       /// Unknowns (fluid and rigid), active cells, cut cells.
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
       /// Refinement flags set for thin gaps, over all passes.

@@ -172,6 +172,17 @@ namespace Fidus
     /// @p where saying which solve it was.
     void
     solve_fluid(double g, unsigned int step, const std::string &where);
+    /// Fluid/Model = cut finite element: the rigid velocities @p U, @p W
+    /// of particles at @p X under the shear rate @p g from one cut-element
+    /// solve on a mesh built for them (CutStokesInclusion), with every gap
+    /// at least Fluid/Cut minimum gap; trouble is reported for @p step.
+    void
+    solve_cut_finite_element(const std::vector<RunState::Vec3> &X,
+                             double                             g,
+                             unsigned int                       step,
+                             const std::string                 &where,
+                             std::vector<RunState::Vec3>       &U,
+                             std::vector<RunState::Vec3>       &W);
     /// The rigid velocity (U, omega) of each particle from the fluid.
     void
     extract_rigid_motion(std::vector<RunState::Vec3> &U,
@@ -224,7 +235,10 @@ namespace Fidus
     const BoxGeometry<dim> box;
     const ShearRate        shear;
     const bool             fictitious;
-    const unsigned int     n;
+    /// Fluid/Model = cut finite element (no persistent mesh: one is built
+    /// for every solve).
+    const bool         cut;
+    const unsigned int n;
     /// Radii of the held solid (Fluid/Solid retraction); the contact model
     /// uses the particles' radii.
     std::vector<double> solid_radii;
@@ -255,6 +269,9 @@ namespace Fidus
     /// This step's work, for its output row.
     typename StokesSolver<dim>::Statistics fluid_stats;
     bool                                   remeshed = false;
+    /// Cells, unknowns and stress of the last cut-element solve.
+    unsigned long long                       cut_cells = 0, cut_dofs = 0;
+    typename HydrodynamicStress<dim>::Result cut_stress;
     /// The trapezoidal passes of this step: the velocities of the last
     /// (the end of the step's, until predict_velocities() takes them),
     /// their iterations summed and whether one of them remeshed.
