@@ -116,8 +116,9 @@ namespace Fidus
       /// translate.
       double translation = 0.;
       /// For the exact inclusion: |dev S - S_exact| / |S_exact| (Frobenius
-      /// norms; the isotropic part depends on the reference pressure) with the unbounded stresslet S_exact = 4 pi eta a^2 E in 2D
-      /// and (20/3) pi eta a^3 E in 3D, E the far field's strain rate.
+      /// norms; the isotropic part depends on the reference pressure),
+      /// with the unbounded stresslet S_exact = 4 pi eta a^2 E in 2D and
+      /// (20/3) pi eta a^3 E in 3D, E the far field's strain rate.
       double stresslet_error = 0.;
       /// For the exact inclusion: ||u - u_exact||_{L2(fluid)} / (g a
       /// |fluid|^(1/2)).
