@@ -73,15 +73,17 @@ namespace Fidus
         "Nitsche's method, on a mesh built for every solve (from Mesh "
         "refinement/Minimum level to Maximum level at the surfaces, thin "
         "gaps further); a serial sparse direct solve, for few particles in "
-        "the unit box in linear shear (doc/fluid.md).");
+        "the unit box in linear shear (doc/cut_element.md).");
       prm.declare_entry(
         "Cut minimum gap",
-        "0.01",
+        "1e-4",
         Patterns::Double(0.),
         "With 'cut finite element': the fluid solve sees every gap between "
         "two particles at least this times the smaller radius, and every "
         "gap to the box this times the radius, by shrinking the radii it "
-        "gives the fluid (the contact model keeps the true radii); > 0.");
+        "gives the fluid (the contact model keeps the true radii); > 0. "
+        "Smaller gaps cost more refinement; down to 1e-4 the 2D squeeze "
+        "follows the lubrication law (doc/cut_element.md).");
       prm.declare_entry(
         "Cut gap cells",
         "2",

@@ -435,7 +435,7 @@ namespace Fidus
         for (const auto &v : state.U)
           umax =
             std::max(umax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
-        const double h = fictitious ? box.h_finest : box.a_min;
+        const double h = fictitious || cut ? box.h_finest : box.a_min;
         dt             = umax > 0 ?
                            std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
                            prm.maximum_time_step;

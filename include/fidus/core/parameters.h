@@ -139,7 +139,7 @@ namespace Fidus
     double solid_smoothing = 0.;
     /// Fluid/Cut minimum gap: the cut element's fluid sees every gap at
     /// least this times the smaller radius (wall gaps: the radius).
-    double cut_minimum_gap = 0.01;
+    double cut_minimum_gap = 1e-4;
     /// Fluid/Cut gap cells: cells across a thin gap of the cut element.
     double cut_gap_cells = 2.;
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
