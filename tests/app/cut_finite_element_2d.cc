@@ -13,6 +13,10 @@
 // - Two levels agree: the trajectories of levels 5 and 6 differ by far
 //   less than the 1 % of a diameter that fixes the fictitious domain's
 //   shipped level.
+// - The stress output: one disc in the middle of the box, area fraction
+//   phi = pi a^2, has the relative viscosity of dilute discs, 1 + 2 phi,
+//   up to the box's walls, whose share falls like a^2: within 2 % of 2 phi
+//   at a = 0.025, and four times that at a = 0.05.
 
 #include "../fidus_test.h"
 
@@ -25,16 +29,24 @@ const double x0[2][2] = {{0.451, 0.51}, {0.549, 0.49}};
 const double radius   = 0.05;
 
 Fidus::RunSummary
-run(const std::string &name, const double end_time, const unsigned int level)
+run(const std::string &name,
+    const double       end_time,
+    const unsigned int level,
+    const std::string &positions = "",
+    const double       a         = radius)
 {
   std::ostringstream prm;
   prm << "set Dimension = 2\n"
       << "set Output directory = " << name << "\n"
       << "subsection Fluid\n  set Model = cut finite element\n"
       << "  set Cut minimum gap = 1e-3\nend\n"
-      << "subsection Particles\n  set Radius = " << radius << "\n"
-      << "  set Positions = " << x0[0][0] << ", " << x0[0][1] << "; "
-      << x0[1][0] << ", " << x0[1][1] << "\nend\n"
+      << "subsection Particles\n  set Radius = " << a << "\n"
+      << "  set Positions = ";
+  if (positions.empty())
+    prm << x0[0][0] << ", " << x0[0][1] << "; " << x0[1][0] << ", " << x0[1][1];
+  else
+    prm << positions;
+  prm << "\nend\n"
       << "subsection Contact\n  set Model = inelastic\nend\n"
       << "subsection Time stepping\n  set End time = " << end_time << "\n"
       << "  set Time step = 0.2\n  set Scheme = trapezoidal\nend\n"
@@ -82,6 +94,27 @@ main(int argc, char **argv)
                 radius,
               0.05,
               10.);
+
+  // One disc in the middle of the box, spanning 3.2 cells of the finest
+  // level: (eta_r - 1) / (2 phi) tends to 1 as the box's walls recede,
+  // their correction falling like a^2.
+  const auto excess = [](const double a, const unsigned int level) {
+    const double phi = M_PI * a * a;
+    return (run("one_disc_" + std::to_string(level), 0., level, "0.5, 0.5", a)
+              .stress.relative_viscosity -
+            1.) /
+             (2. * phi) -
+           1.;
+  };
+  const double wide = excess(0.05, 6), narrow = excess(0.025, 7);
+  check_range("one disc, a = 0.025: (relative viscosity - 1) / (2 phi) - 1",
+              narrow,
+              -0.02,
+              0.02);
+  check_range("one disc: wall excess at a = 0.05 over that at a = 0.025",
+              wide / narrow,
+              3.,
+              5.);
 
   const Fidus::RunSummary finer = run("level_6", 2., 6);
   check_range("t = 2: |X(level 5) - X(level 6)| / a",
