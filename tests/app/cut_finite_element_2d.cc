@@ -95,7 +95,7 @@ main(int argc, char **argv)
               0.05,
               10.);
 
-  // One disc in the middle of the box, spanning 3.2 cells of the finest
+  // One disc in the middle of the box, its radius 3.2 cells of the finest
   // level: (eta_r - 1) / (2 phi) tends to 1 as the box's walls recede,
   // their correction falling like a^2.
   const auto excess = [](const double a, const unsigned int level) {
