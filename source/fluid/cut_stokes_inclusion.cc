@@ -806,78 +806,93 @@ namespace Fidus
         result.angular_velocity.push_back(omega);
       }
 
-    // The stress. First the fluid's mean pressure (the pressure is fixed
-    // up to a constant, which the stresslets must not see), then each
-    // particle's stresslet from the traction that its rigid rows balance:
-    // with n the fluid's outward normal, the force on the particle is
-    // -int (sigma n - gamma (u - w)), the Nitsche flux, so that a force-
-    // and torque-free particle has a stresslet independent of the point
-    // its moments are taken about.
+    // What is measured on the solution, in one pass over the fluid cells
+    // (a cut cell's quadratures are generated once): the fluid's mean
+    // pressure, each particle's stresslet and, for the exact inclusion,
+    // the velocity error.
+    //
+    // The stresslet comes from the traction that the particle's rigid rows
+    // balance: with n the fluid's outward normal, the force on the
+    // particle is -int (sigma n - gamma (u - w)), the Nitsche flux, so
+    // that a force- and torque-free particle has a stresslet independent
+    // of the point its moments are taken about. The pressure is fixed up to
+    // a constant, which the stresslets must not see: they take it relative
+    // to the fluid's mean p_m, which is known only after the pass, so the
+    // pass sums the traction with the raw pressure and the moment
+    // int sym((x - X) (x) n) that -p_m n adds to it.
+    const bool exact_case = s.boundary == Boundary::exact_inclusion;
     {
-      const auto cut_quadratures = [&](const auto &cell) {
-        const auto &P = particles[placed(cell).particle];
-        generator.generate(ReferenceLevelSet<dim>(cell->vertex(0),
-                                                  cell->extent_in_direction(0),
-                                                  P.center,
-                                                  P.radius),
-                           unit_box);
-      };
-      double pressure_integral = 0., volume = 0.;
+      double pressure_integral = 0., volume = 0., error2 = 0.;
+      std::vector<SymmetricTensor<2, dim>> normal_moment(particles.size());
+      result.stresslets.assign(particles.size(), SymmetricTensor<2, dim>());
+      Vector<double> exact_values(dim + 1);
       for (const auto &cell : dof_handler.active_cell_iterators())
         {
           if (cell->active_fe_index() != 0)
             continue;
+          const Placement &here = placed(cell);
+          const auto      &P    = particles[here.particle];
+          cell->get_dof_indices(dofs);
           Quadrature<dim> quadrature = q_cell;
-          if (placed(cell).n_cut > 0)
+          if (here.n_cut > 0)
             {
-              cut_quadratures(cell);
+              generator.generate(
+                ReferenceLevelSet<dim>(cell->vertex(0),
+                                       cell->extent_in_direction(0),
+                                       P.center,
+                                       P.radius),
+                unit_box);
               quadrature = generator.get_outside_quadrature();
             }
-          if (quadrature.size() == 0)
-            continue;
-          FEValues<dim> fe_values(mapping,
-                                  taylor_hood,
-                                  quadrature,
-                                  update_values | update_JxW_values);
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          if (quadrature.size() > 0)
             {
-              double p = 0.;
-              for (unsigned int i = 0; i < n_local; ++i)
-                p += solution(dofs[i]) * fe_values[pressure].value(i, q);
-              pressure_integral += p * fe_values.JxW(q);
-              volume += fe_values.JxW(q);
+              FEValues<dim> fe_values(mapping,
+                                      taylor_hood,
+                                      quadrature,
+                                      update_values | update_JxW_values |
+                                        update_quadrature_points);
+              fe_values.reinit(cell);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  double         p = 0.;
+                  Tensor<1, dim> u;
+                  for (unsigned int i = 0; i < n_local; ++i)
+                    {
+                      p += solution(dofs[i]) * fe_values[pressure].value(i, q);
+                      if (exact_case)
+                        u +=
+                          solution(dofs[i]) * fe_values[velocity].value(i, q);
+                    }
+                  pressure_integral += p * fe_values.JxW(q);
+                  volume += fe_values.JxW(q);
+                  if (exact_case)
+                    {
+                      exact.vector_value(fe_values.quadrature_point(q),
+                                         exact_values);
+                      for (unsigned int d = 0; d < dim; ++d)
+                        u[d] -= exact_values[d];
+                      error2 += u.norm_square() * fe_values.JxW(q);
+                    }
+                }
             }
-        }
-      result.fluid_volume   = volume;
-      result.fluid_pressure = pressure_integral / volume;
-
-      result.stresslets.assign(particles.size(), SymmetricTensor<2, dim>());
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        {
-          if (cell->active_fe_index() != 0 || placed(cell).n_cut == 0)
+          if (here.n_cut == 0 || generator.get_surface_quadrature().size() == 0)
             continue;
-          cut_quadratures(cell);
-          const auto &q_surface = generator.get_surface_quadrature();
-          if (q_surface.size() == 0)
-            continue;
-          const unsigned int                        k = placed(cell).particle;
+          const auto        &q_surface = generator.get_surface_quadrature();
+          const unsigned int k         = here.particle;
           NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
                                                                taylor_hood,
                                                                q_surface,
                                                                surface_flags);
           fe_surface.reinit(cell);
-          cell->get_dof_indices(dofs);
           const double gamma = s.nitsche * eta / cell->extent_in_direction(0);
           for (unsigned int q = 0; q < q_surface.size(); ++q)
             {
               const Tensor<1, dim> n = -fe_surface.normal_vector(q);
               const Tensor<1, dim> r =
-                fe_surface.quadrature_point(q) - particles[k].center;
+                fe_surface.quadrature_point(q) - P.center;
               Tensor<1, dim>          u, w;
               SymmetricTensor<2, dim> strain;
-              double                  p = -result.fluid_pressure;
+              double                  p = 0.;
               for (unsigned int i = 0; i < n_local; ++i)
                 {
                   const double c = solution(dofs[i]);
@@ -892,10 +907,19 @@ namespace Fidus
                 -(2. * eta * (strain * n) - p * n - gamma * (u - w));
               result.stresslets[k] +=
                 symmetrize(outer_product(r, t)) * fe_surface.JxW(q);
+              normal_moment[k] +=
+                symmetrize(outer_product(r, n)) * fe_surface.JxW(q);
             }
         }
+      result.fluid_volume   = volume;
+      result.fluid_pressure = pressure_integral / volume;
+      for (unsigned int k = 0; k < particles.size(); ++k)
+        result.stresslets[k] -= result.fluid_pressure * normal_moment[k];
+      if (exact_case)
+        result.velocity_error =
+          std::sqrt(error2 / volume) / (g * particles[0].radius);
     }
-    if (s.boundary == Boundary::exact_inclusion)
+    if (exact_case)
       {
         // U is zero and omega = -g/2 e_z for the exact particle.
         const double a     = particles[0].radius;
@@ -914,47 +938,6 @@ namespace Fidus
         result.stresslet_error =
           (deviator(result.stresslets[0]) - exact_stresslet).norm() /
           exact_stresslet.norm();
-
-        // The velocity error over the fluid, with the same cut quadratures.
-        double error2 = 0., volume = 0.;
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          {
-            if (cell->active_fe_index() != 0)
-              continue;
-            Quadrature<dim> quadrature = q_cell;
-            if (placed(cell).n_cut > 0)
-              {
-                generator.generate(
-                  ReferenceLevelSet<dim>(cell->vertex(0),
-                                         cell->extent_in_direction(0),
-                                         particles[0].center,
-                                         a),
-                  unit_box);
-                quadrature = generator.get_outside_quadrature();
-              }
-            if (quadrature.size() == 0)
-              continue;
-            FEValues<dim> fe_values(mapping,
-                                    taylor_hood,
-                                    quadrature,
-                                    update_values | update_quadrature_points |
-                                      update_JxW_values);
-            fe_values.reinit(cell);
-            cell->get_dof_indices(dofs);
-            for (unsigned int q = 0; q < quadrature.size(); ++q)
-              {
-                Tensor<1, dim> u;
-                for (unsigned int i = 0; i < n_local; ++i)
-                  u += solution(dofs[i]) * fe_values[velocity].value(i, q);
-                Vector<double> values(dim + 1);
-                exact.vector_value(fe_values.quadrature_point(q), values);
-                for (unsigned int d = 0; d < dim; ++d)
-                  u[d] -= values[d];
-                error2 += u.norm_square() * fe_values.JxW(q);
-                volume += fe_values.JxW(q);
-              }
-          }
-        result.velocity_error = std::sqrt(error2 / volume) / (g * a);
       }
     result.seconds = timer.wall_time();
     return result;

@@ -39,17 +39,12 @@ namespace Fidus
             1e-3 * std::max(std::abs(g_before), std::abs(g_now)))
           g = g_before;
       }
-    if (fictitious)
+    if (fictitious || cut)
       {
-        hydrodynamic = hydrodynamic_stress->compute(*solver, solid);
-        if (g != g_now)
-          hydrodynamic.scale(g / g_now);
-      }
-    else if (cut)
-      {
-        // The cut element's last solve (CutStokesInclusion's stresslets);
-        // the walls' traction is not measured (NaN).
-        hydrodynamic = cut_stress;
+        // The cut element's stress comes with its last solve (its walls'
+        // traction is not measured: NaN).
+        hydrodynamic =
+          cut ? cut_stress : hydrodynamic_stress->compute(*solver, solid);
         if (g != g_now)
           hydrodynamic.scale(g / g_now);
       }

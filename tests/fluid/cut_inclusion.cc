@@ -28,15 +28,33 @@
 #include <stdexcept>
 
 using namespace FidusTest;
+using Solver = Fidus::CutStokesInclusion<2>;
+
+/// Two discs a = 0.1 on y = 1/2, @p gap a apart around x = 1/2, pushed
+/// together by forces +-1 in the box at rest, on the unit box refined
+/// @p level times.
+Solver::Settings
+pushed_pair(const double gap, const unsigned int level)
+{
+  Solver::Settings     s;
+  const double         a = 0.1, x = a + 0.5 * gap * a;
+  dealii::Tensor<1, 2> f;
+  f[0]           = 1.;
+  s.particles    = {{dealii::Point<2>(0.5 - x, 0.5), a, f},
+                    {dealii::Point<2>(0.5 + x, 0.5), a, -f}};
+  s.boundary     = Solver::Boundary::linear_shear;
+  s.shear_rate   = 0.;
+  s.global_level = level;
+  return s;
+}
 
 int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  using Solver                                = Fidus::CutStokesInclusion<2>;
-  const std::vector<dealii::Point<2>> centers = {{0.5132, 0.4871},
-                                                 {0.4417, 0.5523},
-                                                 {0.5609, 0.4288}};
+  const std::vector<dealii::Point<2>>      centers = {{0.5132, 0.4871},
+                                                      {0.4417, 0.5523},
+                                                      {0.5609, 0.4288}};
   std::vector<double> omega(3, 0.), translation(3, 0.), stresslet(3, 0.);
   for (unsigned int k = 0; k < 3; ++k)
     for (const auto &c : centers)
@@ -89,16 +107,7 @@ main(int argc, char **argv)
   // the resolved fictitious-domain reference (levels 10 and 11 of the same
   // box extrapolated, doc/lubrication.md: 6.8064e-3) within 1 %.
   {
-    Solver::Settings     s;
-    const double         a = 0.1, x = a + 0.5 * 0.2 * a;
-    dealii::Tensor<1, 2> f;
-    f[0]           = 1.;
-    s.particles    = {{dealii::Point<2>(0.5 - x, 0.5), a, f},
-                      {dealii::Point<2>(0.5 + x, 0.5), a, -f}};
-    s.boundary     = Solver::Boundary::linear_shear;
-    s.shear_rate   = 0.;
-    s.global_level = 6;
-    const auto r   = Solver::solve(s);
+    const auto r = Solver::solve(pushed_pair(0.2, 6));
     check_range("pair: |U_0 + U_1| / |U_0|",
                 (r.velocity[0] + r.velocity[1]).norm() / r.velocity[0].norm(),
                 0.,
@@ -117,16 +126,8 @@ main(int argc, char **argv)
   // squeeze adds resistance). Refining the gap by one cell or by two (one
   // level more there) gives the same speed at 0.02 a to 1e-3.
   const auto squeeze = [](const double gap, const double gap_cells) {
-    Solver::Settings     s;
-    const double         a = 0.1, x = a + 0.5 * gap * a;
-    dealii::Tensor<1, 2> f;
-    f[0]           = 1.;
-    s.particles    = {{dealii::Point<2>(0.5 - x, 0.5), a, f},
-                      {dealii::Point<2>(0.5 + x, 0.5), a, -f}};
-    s.boundary     = Solver::Boundary::linear_shear;
-    s.shear_rate   = 0.;
-    s.global_level = 4;
-    s.gap_cells    = gap_cells;
+    Solver::Settings s = pushed_pair(gap, 4);
+    s.gap_cells        = gap_cells;
     // Only the cells at the gap are refined, so the far sides of the discs
     // are cut cells of size 0.6 a. Their cut quadratures are accurate to
     // about 1e-6 with the default 4 Gauss points, which breaks the
