@@ -876,12 +876,15 @@ namespace Fidus
   Parameters::check_cut_finite_element() const
   {
     const std::string model = "'Fluid/Model = cut finite element'";
-    if (boundary_condition != BoundaryCondition::linear_shear)
+    if (boundary_condition != BoundaryCondition::linear_shear &&
+        boundary_condition != BoundaryCondition::sliding_walls)
       throw InputError("entry 'Domain/Boundary condition' is not 'linear "
-                       "shear' with " +
+                       "shear' or 'sliding walls' with " +
                        model +
-                       "; allowed: 'linear shear' (the cut element's box "
-                       "has the shear's velocity on every face)");
+                       "; allowed: 'linear shear' or 'sliding walls' (the "
+                       "cut element's box has the shear's velocity on "
+                       "every face, or on the walls y = 0, 1 with the other "
+                       "faces periodic)");
     for (unsigned int d = 0; d < dimension; ++d)
       if (lower_left[d] != 0. || upper_right[d] != 1.)
         {

@@ -27,8 +27,11 @@
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <deal.II/non_matching/quadrature_generator.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_level_set.h>
+#include <fidus/fluid/cut_mesh.h>
 #include <fidus/fluid/cut_stokes_inclusion.h>
 #include <fidus/fluid/exact_rigid_inclusion.h>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -37,97 +40,6 @@ namespace Fidus
 {
   namespace
   {
-    /// psi(xi) = |lower + h xi - X| - a on the reference cell of an
-    /// axis-parallel cell of size h: negative in the particle. The cut
-    /// quadratures are generated in reference coordinates, where FEValues
-    /// wants them.
-    template <int dim>
-    class ReferenceLevelSet : public Function<dim>
-    {
-    public:
-      ReferenceLevelSet(const Point<dim> &lower,
-                        const double      h,
-                        const Point<dim> &center,
-                        const double      radius)
-        : lower(lower)
-        , h(h)
-        , center(center)
-        , radius(radius)
-      {}
-
-      double
-      value(const Point<dim> &xi, const unsigned int = 0) const override
-      {
-        return (real(xi) - center).norm() - radius;
-      }
-
-      Tensor<1, dim>
-      gradient(const Point<dim> &xi, const unsigned int = 0) const override
-      {
-        const Tensor<1, dim> r = real(xi) - center;
-        return h * r / r.norm();
-      }
-
-      SymmetricTensor<2, dim>
-      hessian(const Point<dim> &xi, const unsigned int = 0) const override
-      {
-        const Tensor<1, dim>    r = real(xi) - center;
-        const double            d = r.norm();
-        SymmetricTensor<2, dim> H;
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = i; j < dim; ++j)
-            H[i][j] = h * h * ((i == j ? 1. : 0.) - r[i] * r[j] / (d * d)) / d;
-        return H;
-      }
-
-    private:
-      Point<dim>
-      real(const Point<dim> &xi) const
-      {
-        Point<dim> x = lower;
-        for (unsigned int d = 0; d < dim; ++d)
-          x[d] += h * xi[d];
-        return x;
-      }
-
-      const Point<dim> lower;
-      const double     h;
-      const Point<dim> center;
-      const double     radius;
-    };
-
-    enum class Location
-    {
-      fluid,
-      cut,
-      solid
-    };
-
-    /// Where an axis-parallel cell lies relative to the ball: the nearest
-    /// and farthest points of a box from a point are found coordinate-wise.
-    template <typename CellIterator, int dim>
-    Location
-    locate(const CellIterator &cell, const Point<dim> &c, const double a)
-    {
-      const Point<dim> lo = cell->vertex(0);
-      const Point<dim> hi =
-        cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1);
-      double near2 = 0., far2 = 0.;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double n = std::max({lo[d] - c[d], 0., c[d] - hi[d]});
-          const double f =
-            std::max(std::abs(lo[d] - c[d]), std::abs(hi[d] - c[d]));
-          near2 += n * n;
-          far2 += f * f;
-        }
-      if (near2 >= a * a)
-        return Location::fluid;
-      if (far2 <= a * a)
-        return Location::solid;
-      return Location::cut;
-    }
-
     /// The rigid motions: e_0..e_{dim-1}, then the rotations about the
     /// centre (one in 2D, e_k x r in 3D).
     template <int dim>
@@ -151,35 +63,6 @@ namespace Fidus
           w[m1] = -r[m2];
         }
       return w;
-    }
-
-    /// Where a cell lies relative to all particles: inside one (solid), or
-    /// the number of surfaces it meets and the last of them.
-    struct Placement
-    {
-      bool         solid    = false;
-      unsigned int n_cut    = 0;
-      unsigned int particle = 0;
-    };
-
-    template <typename CellIterator, typename Particles>
-    Placement
-    place(const CellIterator &cell, const Particles &particles)
-    {
-      Placement p;
-      for (unsigned int k = 0; k < particles.size(); ++k)
-        {
-          const Location where =
-            locate(cell, particles[k].center, particles[k].radius);
-          if (where == Location::solid)
-            p.solid = true;
-          else if (where == Location::cut)
-            {
-              ++p.n_cut;
-              p.particle = k;
-            }
-        }
-      return p;
     }
 
     /// u = g (y - 1/2) e_x, p = 0.
@@ -235,6 +118,16 @@ namespace Fidus
              ">= 0 (0 leaves small cut pieces unstable)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
+    // Sliding walls: y has the walls, every other axis is periodic.
+    const bool                periodic = s.boundary == Boundary::sliding_walls;
+    std::vector<unsigned int> periodic_axes;
+    for (unsigned int d = 0; d < dim; ++d)
+      if (periodic && d != 1)
+        periodic_axes.push_back(d);
+    const auto is_periodic = [&](const unsigned int d) {
+      return std::find(periodic_axes.begin(), periodic_axes.end(), d) !=
+             periodic_axes.end();
+    };
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const auto &P = particles[k];
@@ -243,102 +136,44 @@ namespace Fidus
                  P.radius,
                  "> 0");
         for (unsigned int d = 0; d < dim; ++d)
-          if (P.center[d] - P.radius <= 0. || P.center[d] + P.radius >= 1.)
+          if (!is_periodic(d) &&
+              (P.center[d] - P.radius <= 0. || P.center[d] + P.radius >= 1.))
             refuse("coordinate " + std::to_string(d) + " of particle " +
                      std::to_string(k) + "'s centre",
                    P.center[d],
                    "the particle inside the unit box");
-        for (unsigned int l = 0; l < k; ++l)
-          {
-            const double gap = (P.center - particles[l].center).norm() -
-                               P.radius - particles[l].radius;
-            if (!(gap > 0.))
-              refuse("the gap between particles " + std::to_string(l) +
-                       " and " + std::to_string(k),
-                     gap,
-                     "> 0");
-          }
       }
 
-    Triangulation<dim> tria(
-      Triangulation<dim>::limit_level_difference_at_vertices);
-    GridGenerator::hyper_cube(tria, 0., 1.);
-    tria.refine_global(s.global_level);
-    for (unsigned int l = 0; l < s.band_levels; ++l)
+    Result                          result;
+    std::vector<Point<dim>>         centers;
+    std::vector<double>             radii;
+    typename CutMesh<dim>::Settings mesh_settings;
+    for (const auto &P : particles)
       {
-        for (const auto &cell : tria.active_cell_iterators())
-          for (const auto &P : particles)
-            {
-              const double reach =
-                s.band_cells * cell->diameter() / std::sqrt(dim);
-              if (std::abs((cell->center() - P.center).norm() - P.radius) <
-                  reach)
-                cell->set_refine_flag();
-            }
-        tria.execute_coarsening_and_refinement();
+        centers.push_back(P.center);
+        radii.push_back(P.radius);
       }
-    // A cell cut by two surfaces would need two level sets in one
-    // quadrature: refine it until each cut cell meets one surface, and with
-    // gap_cells > 0 refine the cut cells near another particle until the
-    // gap has cells across it. Only the cells at the gap are refined: the
-    // ghost penalties are assembled across hanging faces too, so a cut
-    // cell may have neighbours one level coarser or finer. The
-    // triangulation keeps levels within one of each other at vertices, so
-    // that the refinement grades away from the gap.
-    Result    result;
-    const int max_level =
-      static_cast<int>(s.global_level + s.band_levels + s.max_gap_levels);
-    for (unsigned int pass = 0; pass < 100000; ++pass)
-      {
-        bool flagged = false;
-        for (const auto &cell : tria.active_cell_iterators())
-          {
-            const Placement here = place(cell, particles);
-            if (here.solid || here.n_cut == 0)
-              continue;
-            bool near_other = here.n_cut >= 2;
-            if (!near_other && s.gap_cells > 0.)
-              for (unsigned int k = 0; k < particles.size(); ++k)
-                if (k != here.particle &&
-                    (cell->center() - particles[k].center).norm() -
-                        particles[k].radius <
-                      (s.gap_cells + 0.5 * std::sqrt(dim)) *
-                        cell->extent_in_direction(0))
-                  near_other = true;
-            if (!near_other)
-              continue;
-            if (cell->level() >= max_level)
-              {
-                if (here.n_cut >= 2)
-                  throw std::invalid_argument(
-                    "CutStokesInclusion: a cell of size " +
-                    std::to_string(cell->extent_in_direction(0)) +
-                    " is still cut by two particles after " +
-                    std::to_string(s.max_gap_levels) +
-                    " further levels; allowed: wider gaps or a larger "
-                    "max_gap_levels");
-                continue;
-              }
-            cell->set_refine_flag();
-            ++result.n_gap_refinements;
-            flagged = true;
-          }
-        if (!flagged)
-          break;
-        tria.execute_coarsening_and_refinement();
-      }
+    mesh_settings.global_level   = s.global_level;
+    mesh_settings.band_levels    = s.band_levels;
+    mesh_settings.band_cells     = s.band_cells;
+    mesh_settings.gap_cells      = s.gap_cells;
+    mesh_settings.max_gap_levels = s.max_gap_levels;
+    mesh_settings.periodic_axes  = periodic_axes;
+    const CutMesh<dim>        mesh(centers, radii, mesh_settings);
+    const Triangulation<dim> &tria  = mesh.get_triangulation();
+    const auto               &balls = mesh.get_balls();
+    result.n_gap_refinements        = mesh.n_gap_refinements;
+    result.n_periodic_refinements   = mesh.n_periodic_refinements;
+    using Placement                 = typename CutMesh<dim>::Placement;
 
     const unsigned int    n_rigid = dim * (dim + 1) / 2;
     const FESystem<dim>   taylor_hood(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1);
     const FESystem<dim>   nothing(FE_Nothing<dim>(), dim, FE_Nothing<dim>(), 1);
     hp::FECollection<dim> fe_collection(taylor_hood, nothing);
 
-    // Where each cell lies, once the mesh is final: every loop below asks.
-    std::vector<Placement> placement(tria.n_active_cells());
-    for (const auto &cell : tria.active_cell_iterators())
-      placement[cell->active_cell_index()] = place(cell, particles);
+    // Where each cell lies: every loop below asks.
     const auto placed = [&](const auto &cell) -> const Placement & {
-      return placement[cell->active_cell_index()];
+      return mesh.placement(cell);
     };
 
     DoFHandler<dim> dof_handler(tria);
@@ -368,16 +203,21 @@ namespace Fidus
                     static_cast<const Function<dim> &>(exact) :
                     static_cast<const Function<dim> &>(shear);
 
-    // The box takes the exact velocity; one pressure value is pinned, since
-    // with Dirichlet data all round the pressure is fixed up to a constant.
+    // The box takes the exact velocity (the faces are numbered 2d, 2d + 1
+    // for axis d), sliding walls only on y = 0, 1, with the periodic faces
+    // identified. One pressure value is pinned, since with the velocity
+    // given on every wall the pressure is fixed up to a constant.
     AffineConstraints<double> constraints;
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-    VectorTools::interpolate_boundary_values(dof_handler,
-                                             0,
-                                             box_velocity,
-                                             constraints,
-                                             fe_collection.component_mask(
-                                               velocity));
+    for (unsigned int face = 0; face < 2 * dim; ++face)
+      if (!is_periodic(face / 2))
+        VectorTools::interpolate_boundary_values(dof_handler,
+                                                 face,
+                                                 box_velocity,
+                                                 constraints,
+                                                 fe_collection.component_mask(
+                                                   velocity));
+    mesh.make_periodicity_constraints(dof_handler, constraints);
     {
       const IndexSet pressure_dofs =
         DoFTools::extract_dofs(dof_handler,
@@ -391,8 +231,57 @@ namespace Fidus
     }
     constraints.close();
 
-    // Cells with fluid, and the faces between two of them where at least
-    // one is cut: the ghost-penalty faces.
+    // The ghost-penalty faces: between two cells with fluid, at least one
+    // of them cut. Each face once: a conforming one from the cell of lower
+    // index, a hanging one from its finer side (the coarser cell's values
+    // are taken on the subface), a periodic one from its lower side.
+    struct GhostFace
+    {
+      typename DoFHandler<dim>::active_cell_iterator cell, neighbour;
+      unsigned int                                   face, neighbour_face;
+      unsigned int   subface = numbers::invalid_unsigned_int;
+      Tensor<1, dim> shift;
+    };
+    std::vector<GhostFace> ghost_faces;
+    const auto ghost_pair = [&](const auto &cell, const auto &neighbour) {
+      return cell->active_fe_index() == 0 &&
+             neighbour->active_fe_index() == 0 &&
+             (placed(cell).n_cut > 0 || placed(neighbour).n_cut > 0);
+    };
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        {
+          if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
+            continue;
+          const auto neighbour = cell->neighbor(f);
+          const bool coarser   = cell->neighbor_is_coarser(f);
+          if (!ghost_pair(cell, neighbour) ||
+              (!coarser && !(neighbour->index() > cell->index())))
+            continue;
+          GhostFace face{cell, neighbour, f, 0};
+          if (coarser)
+            {
+              const auto face_and_subface =
+                cell->neighbor_of_coarser_neighbor(f);
+              face.neighbour_face = face_and_subface.first;
+              face.subface        = face_and_subface.second;
+            }
+          else
+            face.neighbour_face = cell->neighbor_of_neighbor(f);
+          ghost_faces.push_back(face);
+        }
+    for (const auto &pair : mesh.periodic_neighbours())
+      {
+        const typename DoFHandler<dim>::active_cell_iterator
+          lower(&tria, pair.lower_level, pair.lower_index, &dof_handler),
+          upper(&tria, pair.upper_level, pair.upper_index, &dof_handler);
+        if (!ghost_pair(lower, upper))
+          continue;
+        GhostFace face{lower, upper, 2 * pair.axis, 2 * pair.axis + 1};
+        face.shift[pair.axis] = -1.;
+        ghost_faces.push_back(face);
+      }
+
     const MappingCartesian<dim> mapping;
     DynamicSparsityPattern      dsp(n_total, n_total);
     {
@@ -421,25 +310,19 @@ namespace Fidus
             // missing from the pattern would be dropped without an error.
             std::vector<types::global_dof_index> coupled = dofs;
             for (unsigned int k = 0; k < n_rigid; ++k)
-              coupled.push_back(n_fluid + here.particle * n_rigid + k);
+              coupled.push_back(n_fluid + balls[here.ball].owner * n_rigid + k);
             constraints.add_entries_local_to_global(coupled, dsp, true);
           }
-        for (const unsigned int f : cell->face_indices())
-          {
-            // A face with a finer neighbour is seen from the finer side.
-            if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
-              continue;
-            const auto neighbour = cell->neighbor(f);
-            if (neighbour->active_fe_index() != 0 ||
-                !(cut || placed(neighbour).n_cut > 0))
-              continue;
-            neighbour->get_dof_indices(neighbour_dofs);
-            std::vector<types::global_dof_index> coupled = dofs;
-            for (const auto j : neighbour_dofs)
-              if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
-                coupled.push_back(j);
-            constraints.add_entries_local_to_global(coupled, dsp, true);
-          }
+      }
+    for (const GhostFace &face : ghost_faces)
+      {
+        face.cell->get_dof_indices(dofs);
+        face.neighbour->get_dof_indices(neighbour_dofs);
+        std::vector<types::global_dof_index> coupled = dofs;
+        for (const auto j : neighbour_dofs)
+          if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
+            coupled.push_back(j);
+        constraints.add_entries_local_to_global(coupled, dsp, true);
       }
     for (unsigned int p = 0; p < particles.size(); ++p)
       for (unsigned int k = 0; k < n_rigid; ++k)
@@ -448,7 +331,13 @@ namespace Fidus
     SparsityPattern sparsity;
     sparsity.copy_from(dsp);
     SparseMatrix<double> matrix(sparsity);
-    Vector<double>       rhs(n_total), solution(n_total);
+    // Between sliding walls, the unconstrained matrix too: the walls'
+    // stress is the residual of their DoFs' rows, which the constrained
+    // matrix no longer has (the pattern holds the unconstrained entries).
+    SparseMatrix<double> unconstrained;
+    if (periodic)
+      unconstrained.reinit(sparsity);
+    Vector<double> rhs(n_total), solution(n_total);
 
     const unsigned int                   n_ext = n_local + n_rigid;
     FullMatrix<double>                   local(n_ext, n_ext);
@@ -503,13 +392,15 @@ namespace Fidus
         cell->get_dof_indices(dofs);
         std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
         const Placement &here = placed(cell);
-        const auto      &P    = particles[here.particle];
+        const auto      &P    = balls[here.ball];
         for (unsigned int k = 0; k < n_rigid; ++k)
-          ext_dofs[n_local + k] = n_fluid + here.particle * n_rigid + k;
+          ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
         if (here.n_cut == 0)
           {
             fe_fluid.reinit(cell);
             add_volume(fe_fluid);
+            if (periodic)
+              unconstrained.add(ext_dofs, local);
             constraints.distribute_local_to_global(local,
                                                    local_rhs,
                                                    ext_dofs,
@@ -519,7 +410,7 @@ namespace Fidus
           }
         const double h = cell->extent_in_direction(0);
         generator.generate(
-          ReferenceLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
+          CutLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
           unit_box);
         const Quadrature<dim> &q_outside = generator.get_outside_quadrature();
         if (q_outside.size() > 0)
@@ -575,6 +466,8 @@ namespace Fidus
                       JxW;
               }
           }
+        if (periodic)
+          unconstrained.add(ext_dofs, local);
         constraints.distribute_local_to_global(local,
                                                local_rhs,
                                                ext_dofs,
@@ -597,105 +490,91 @@ namespace Fidus
       std::vector<types::global_dof_index>     face_dofs;
       std::vector<std::array<unsigned int, 2>> local_of(n_local);
       FullMatrix<double>                       face_matrix;
+      Vector<double>                           face_rhs;
       std::vector<Tensor<1, dim>>              d1, d2;
       std::vector<double>                      dp;
-      for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const GhostFace &ghost : ghost_faces)
         {
-          if (cell->active_fe_index() != 0)
-            continue;
-          const bool cut = placed(cell).n_cut > 0;
-          for (const unsigned int f : cell->face_indices())
+          const auto &cell      = ghost.cell;
+          const auto &neighbour = ghost.neighbour;
+          const bool  coarser = ghost.subface != numbers::invalid_unsigned_int;
+          fe_face.reinit(cell, ghost.face);
+          if (coarser)
+            fe_coarser.reinit(neighbour, ghost.neighbour_face, ghost.subface);
+          else
+            fe_neighbour.reinit(neighbour, ghost.neighbour_face);
+          const FEFaceValuesBase<dim> &fe_other =
+            coarser ? static_cast<const FEFaceValuesBase<dim> &>(fe_coarser) :
+                      static_cast<const FEFaceValuesBase<dim> &>(fe_neighbour);
+          cell->get_dof_indices(dofs);
+          neighbour->get_dof_indices(neighbour_dofs);
+          face_dofs = dofs;
+          for (unsigned int i = 0; i < n_local; ++i)
             {
-              // Each face once: a conforming one from the cell of lower
-              // index, a hanging one from its finer side, where the coarser
-              // cell's values are taken on the subface.
-              if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
-                continue;
-              const auto neighbour = cell->neighbor(f);
-              const bool coarser   = cell->neighbor_is_coarser(f);
-              if (neighbour->active_fe_index() != 0 ||
-                  (!coarser && !(neighbour->index() > cell->index())) ||
-                  !(cut || placed(neighbour).n_cut > 0))
-                continue;
-              fe_face.reinit(cell, f);
-              if (coarser)
-                {
-                  const auto face_and_subface =
-                    cell->neighbor_of_coarser_neighbor(f);
-                  fe_coarser.reinit(neighbour,
-                                    face_and_subface.first,
-                                    face_and_subface.second);
-                }
+              local_of[i][0] = i;
+              const auto it =
+                std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
+              if (it != dofs.end())
+                local_of[i][1] = it - dofs.begin();
               else
-                fe_neighbour.reinit(neighbour, cell->neighbor_of_neighbor(f));
-              const FEFaceValuesBase<dim> &fe_other =
-                coarser ?
-                  static_cast<const FEFaceValuesBase<dim> &>(fe_coarser) :
-                  static_cast<const FEFaceValuesBase<dim> &>(fe_neighbour);
-              cell->get_dof_indices(dofs);
-              neighbour->get_dof_indices(neighbour_dofs);
-              face_dofs = dofs;
-              for (unsigned int i = 0; i < n_local; ++i)
                 {
-                  local_of[i][0] = i;
-                  const auto it =
-                    std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
-                  if (it != dofs.end())
-                    local_of[i][1] = it - dofs.begin();
-                  else
-                    {
-                      local_of[i][1] = face_dofs.size();
-                      face_dofs.push_back(neighbour_dofs[i]);
-                    }
+                  local_of[i][1] = face_dofs.size();
+                  face_dofs.push_back(neighbour_dofs[i]);
                 }
-              const unsigned int n_face = face_dofs.size();
-              face_matrix.reinit(n_face, n_face);
-              // Across a hanging face, the mean of the two cells' sizes.
-              const double h = 0.5 * (cell->extent_in_direction(0) +
-                                      neighbour->extent_in_direction(0));
-              for (unsigned int q = 0; q < q_face.size(); ++q)
-                {
-                  if ((fe_face.quadrature_point(q) -
-                       fe_other.quadrature_point(q))
-                        .norm() > 1e-12 * h)
-                    throw std::logic_error(
-                      "CutStokesInclusion: face quadrature "
-                      "points do not match");
-                  const Tensor<1, dim> n = fe_face.normal_vector(q);
-                  d1.assign(n_face, Tensor<1, dim>());
-                  d2.assign(n_face, Tensor<1, dim>());
-                  dp.assign(n_face, 0.);
-                  for (unsigned int side = 0; side < 2; ++side)
-                    {
-                      const FEFaceValuesBase<dim> &fv =
-                        side == 0 ? fe_face : fe_other;
-                      const double sign = side == 0 ? 1. : -1.;
-                      for (unsigned int i = 0; i < n_local; ++i)
-                        {
-                          const unsigned int I    = local_of[i][side];
-                          const auto         grad = fv[velocity].gradient(i, q);
-                          const auto         hess = fv[velocity].hessian(i, q);
-                          for (unsigned int c = 0; c < dim; ++c)
-                            {
-                              d1[I][c] += sign * (grad[c] * n);
-                              d2[I][c] += sign * (n * (hess[c] * n));
-                            }
-                          dp[I] += sign * (fv[pressure].gradient(i, q) * n);
-                        }
-                    }
-                  const double JxW = fe_face.JxW(q);
-                  for (unsigned int i = 0; i < n_face; ++i)
-                    for (unsigned int j = 0; j < n_face; ++j)
-                      face_matrix(i, j) +=
-                        (s.ghost_velocity * eta *
-                           (h * d1[i] * d1[j] + h * h * h * d2[i] * d2[j]) -
-                         s.ghost_pressure / eta * h * h * h * dp[i] * dp[j]) *
-                        JxW;
-                }
-              constraints.distribute_local_to_global(face_matrix,
-                                                     face_dofs,
-                                                     matrix);
             }
+          const unsigned int n_face = face_dofs.size();
+          face_matrix.reinit(n_face, n_face);
+          // Across a hanging face, the mean of the two cells' sizes.
+          const double h = 0.5 * (cell->extent_in_direction(0) +
+                                  neighbour->extent_in_direction(0));
+          for (unsigned int q = 0; q < q_face.size(); ++q)
+            {
+              if ((fe_face.quadrature_point(q) - fe_other.quadrature_point(q) -
+                   ghost.shift)
+                    .norm() > 1e-12 * h)
+                throw std::logic_error("CutStokesInclusion: face quadrature "
+                                       "points do not match");
+              const Tensor<1, dim> n = fe_face.normal_vector(q);
+              d1.assign(n_face, Tensor<1, dim>());
+              d2.assign(n_face, Tensor<1, dim>());
+              dp.assign(n_face, 0.);
+              for (unsigned int side = 0; side < 2; ++side)
+                {
+                  const FEFaceValuesBase<dim> &fv =
+                    side == 0 ? fe_face : fe_other;
+                  const double sign = side == 0 ? 1. : -1.;
+                  for (unsigned int i = 0; i < n_local; ++i)
+                    {
+                      const unsigned int I    = local_of[i][side];
+                      const auto         grad = fv[velocity].gradient(i, q);
+                      const auto         hess = fv[velocity].hessian(i, q);
+                      for (unsigned int c = 0; c < dim; ++c)
+                        {
+                          d1[I][c] += sign * (grad[c] * n);
+                          d2[I][c] += sign * (n * (hess[c] * n));
+                        }
+                      dp[I] += sign * (fv[pressure].gradient(i, q) * n);
+                    }
+                }
+              const double JxW = fe_face.JxW(q);
+              for (unsigned int i = 0; i < n_face; ++i)
+                for (unsigned int j = 0; j < n_face; ++j)
+                  face_matrix(i, j) +=
+                    (s.ghost_velocity * eta *
+                       (h * d1[i] * d1[j] + h * h * h * d2[i] * d2[j]) -
+                     s.ghost_pressure / eta * h * h * h * dp[i] * dp[j]) *
+                    JxW;
+            }
+          if (periodic)
+            unconstrained.add(face_dofs, face_matrix);
+          // With the right-hand side: a face next to the box's boundary
+          // couples to DoFs with imposed velocity, whose values move to it.
+          face_rhs.reinit(n_face);
+          constraints.distribute_local_to_global(face_matrix,
+                                                 face_rhs,
+                                                 face_dofs,
+                                                 matrix,
+                                                 rhs);
         }
     }
 
@@ -831,17 +710,16 @@ namespace Fidus
           if (cell->active_fe_index() != 0)
             continue;
           const Placement &here = placed(cell);
-          const auto      &P    = particles[here.particle];
+          const auto      &P    = balls[here.ball];
           cell->get_dof_indices(dofs);
           Quadrature<dim> quadrature = q_cell;
           if (here.n_cut > 0)
             {
-              generator.generate(
-                ReferenceLevelSet<dim>(cell->vertex(0),
-                                       cell->extent_in_direction(0),
-                                       P.center,
-                                       P.radius),
-                unit_box);
+              generator.generate(CutLevelSet<dim>(cell->vertex(0),
+                                                  cell->extent_in_direction(0),
+                                                  P.center,
+                                                  P.radius),
+                                 unit_box);
               quadrature = generator.get_outside_quadrature();
             }
           if (quadrature.size() > 0)
@@ -878,7 +756,7 @@ namespace Fidus
           if (here.n_cut == 0 || generator.get_surface_quadrature().size() == 0)
             continue;
           const auto        &q_surface = generator.get_surface_quadrature();
-          const unsigned int k         = here.particle;
+          const unsigned int k         = P.owner;
           NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
                                                                taylor_hood,
                                                                q_surface,
@@ -919,6 +797,53 @@ namespace Fidus
         result.velocity_error =
           std::sqrt(error2 / volume) / (g * particles[0].radius);
     }
+
+    // The walls' stress, as a rheometer's walls feel it: with Phi a
+    // conforming test function that is e_a on one wall and vanishes off
+    // its first layer of cells (1 at the wall's DoFs of component a, both
+    // ends of the periodic wall included, hanging DoFs interpolated), the
+    // residual a(u, Phi) of the unconstrained rows is the wall's force
+    // int sigma n . e_a whenever the equations of all other DoFs hold: the
+    // same momentum balance the stresslets come from, so the two agree to
+    // round-off (tests/fluid/cut_periodic).
+    for (unsigned int d = 0; d < dim; ++d)
+      result.top_wall_stress[d] = result.bottom_wall_stress[d] =
+        periodic ? 0. : std::numeric_limits<double>::quiet_NaN();
+    if (periodic)
+      {
+        AffineConstraints<double> hanging;
+        DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+        hanging.close();
+        Vector<double> residual(n_total);
+        unconstrained.vmult(residual, solution);
+        const auto &support = taylor_hood.get_unit_support_points();
+        for (unsigned int side = 0; side < 2; ++side)
+          for (unsigned int a = 0; a < dim; ++a)
+            {
+              Vector<double> phi(n_total);
+              for (const auto &cell : dof_handler.active_cell_iterators())
+                if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
+                  {
+                    cell->get_dof_indices(dofs);
+                    for (unsigned int i = 0; i < n_local; ++i)
+                      if (taylor_hood.system_to_component_index(i).first == a &&
+                          std::abs(support[i][1] - side) < 1e-12)
+                        phi[dofs[i]] = 1.;
+                  }
+              hanging.distribute(phi);
+              // sigma e_y: the force on the top wall (n = e_y), minus the
+              // force on the bottom one.
+              const double force = phi * residual;
+              if (side == 1)
+                result.top_wall_stress[a] = force;
+              else
+                result.bottom_wall_stress[a] = -force;
+            }
+        // The pressure relative to the fluid's mean, as in the stresslets:
+        // a constant c in p adds -c int div Phi = -c int Phi . n.
+        result.top_wall_stress[1] += result.fluid_pressure;
+        result.bottom_wall_stress[1] += result.fluid_pressure;
+      }
     if (exact_case)
       {
         // U is zero and omega = -g/2 e_z for the exact particle.

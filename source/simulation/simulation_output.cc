@@ -42,7 +42,7 @@ namespace Fidus
     if (fictitious || cut)
       {
         // The cut element's stress comes with its last solve (its walls'
-        // traction is not measured: NaN).
+        // traction only between sliding walls, NaN otherwise).
         hydrodynamic =
           cut ? cut_stress : hydrodynamic_stress->compute(*solver, solid);
         if (g != g_now)

@@ -292,7 +292,9 @@ namespace Fidus
     TimerOutput::Scope scope(*timer, "fluid");
     using Cut = CutStokesInclusion<dim>;
     typename Cut::Settings s;
-    s.boundary     = Cut::Boundary::linear_shear;
+    s.boundary     = prm.boundary_condition == BoundaryCondition::sliding_walls ?
+                       Cut::Boundary::sliding_walls :
+                       Cut::Boundary::linear_shear;
     s.shear_rate   = g;
     s.viscosity    = prm.viscosity;
     s.global_level = prm.minimum_level;
@@ -317,16 +319,23 @@ namespace Fidus
       {
         const double a = prm.radii[i];
         for (unsigned int d = 0; d < dim; ++d)
-          {
-            const double wall = std::min(X[i][d], 1. - X[i][d]) - a;
-            shrink[i] = std::max(shrink[i], prm.cut_minimum_gap * a - wall);
-            overlap   = std::max(overlap, -wall / a);
-          }
+          if (!box.is_periodic[d])
+            {
+              const double wall = std::min(X[i][d], 1. - X[i][d]) - a;
+              shrink[i] = std::max(shrink[i], prm.cut_minimum_gap * a - wall);
+              overlap   = std::max(overlap, -wall / a);
+            }
         for (unsigned int j = 0; j < i; ++j)
           {
+            // The nearest image along periodic axes (period 1).
             double d2 = 0.;
             for (unsigned int d = 0; d < dim; ++d)
-              d2 += std::pow(X[i][d] - X[j][d], 2);
+              {
+                double x = X[i][d] - X[j][d];
+                if (box.is_periodic[d])
+                  x -= std::round(x);
+                d2 += x * x;
+              }
             const double b   = prm.radii[j];
             const double gap = std::sqrt(d2) - a - b;
             const double cut_by =
@@ -393,7 +402,9 @@ namespace Fidus
     // where <e(u)> is the boundary's shear, since the velocity is rigid
     // in the particles. In plane strain the zz stresslet is the particle's
     // int (<p>_f - p), which is half the in-plane trace: the in-plane
-    // trace of a rigid particle's stress is -2p.
+    // trace of a rigid particle's stress is -2p. Between sliding walls the
+    // walls' stress sigma e_y is measured too (entries (a, y)), as the
+    // fictitious domain's is; with linear shear it is not (NaN).
     using Tensor3            = typename HydrodynamicStress<dim>::Tensor3;
     auto &h                  = cut_stress;
     h                        = typename HydrodynamicStress<dim>::Result();
@@ -417,6 +428,9 @@ namespace Fidus
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
         h.wall[a][b] = std::numeric_limits<double>::quiet_NaN();
+    if (s.boundary == Cut::Boundary::sliding_walls)
+      for (unsigned int a = 0; a < dim; ++a)
+        h.wall[a][1] = r.top_wall_stress[a];
   }
 
 

@@ -32,7 +32,9 @@ namespace Fidus
    * of cut cells keep the system well conditioned however small the fluid
    * part of a cell is (Burman & Hansbo 2014; Guzman & Olshanskii 2018 for
    * Taylor-Hood). Cells inside the particle carry no unknowns
-   * (FE_Nothing). The box boundary takes the exact velocity.
+   * (FE_Nothing). The box boundary takes the exact velocity, or, with
+   * sliding walls, the walls y = 0, 1 take the shear's velocity and the
+   * other axes are periodic (CutMesh matches the faces cell for cell).
    *
    * It solves one serial system with a sparse direct solver, on a mesh
    * built for the particles given: cheap for few particles in 2D, the
@@ -45,7 +47,7 @@ namespace Fidus
     /// One rigid particle.
     struct Particle
     {
-      /// Centre, in the unit box.
+      /// Centre, in the unit box (any value along a periodic axis).
       Point<dim> center;
       /// Radius.
       double radius = 0.1;
@@ -60,13 +62,17 @@ namespace Fidus
       /// (ExactRigidInclusion); needs exactly one particle.
       exact_inclusion,
       /// g (y - 1/2) e_x (at rest for g = 0).
-      linear_shear
+      linear_shear,
+      /// g (y - 1/2) e_x on the walls y = 0 and y = 1, periodic along
+      /// every other axis (a particle may cross those faces).
+      sliding_walls
     };
 
     /// The scene and the discretisation's parameters.
     struct Settings
     {
-      /// The particles (they must not overlap, nor touch the box).
+      /// The particles (they must not overlap, nor touch the box's walls;
+      /// along periodic axes the gaps are taken to the nearest image).
       std::vector<Particle> particles;
       /// The box's velocity.
       Boundary boundary = Boundary::exact_inclusion;
@@ -131,10 +137,17 @@ namespace Fidus
       std::vector<SymmetricTensor<2, dim>> stresslets;
       /// Mean pressure over the fluid, and the fluid's volume.
       double fluid_pressure = 0., fluid_volume = 0.;
+      /// For sliding walls: the mean of sigma e_y over the wall y = 1 and
+      /// over the wall y = 0, from the consistent residual of the walls'
+      /// velocity DoFs, the pressure taken relative to the fluid's mean
+      /// (doc/cut_element.md, "Periodic faces"); NaN otherwise. Both equal
+      /// the box's mean stress sigma e_y when the particles are force-free.
+      Tensor<1, dim> top_wall_stress, bottom_wall_stress;
       /// Unknowns (fluid and rigid), active cells, cut cells.
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
-      /// Refinement flags set for thin gaps, over all passes.
-      unsigned int n_gap_refinements = 0;
+      /// Refinement flags set for thin gaps, over all passes, and for
+      /// matching the periodic faces.
+      unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
       /// Finest cell size.
       double h = 0.;
       /// ||A x - b|| / ||b|| of the direct solve.

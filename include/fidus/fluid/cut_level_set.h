@@ -1,0 +1,81 @@
+#ifndef fidus_fluid_cut_level_set_h
+#define fidus_fluid_cut_level_set_h
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The level set psi(xi) = |lower + h xi - X| - a of a ball on the
+   * reference cell of an axis-parallel cell of size h (negative in the
+   * ball). The cut quadratures of CutStokesInclusion are generated in
+   * reference coordinates, where FEValues wants them, from this exact
+   * sphere: its value, gradient and Hessian, which
+   * NonMatching::QuadratureGenerator needs.
+   */
+  template <int dim>
+  class CutLevelSet : public Function<dim>
+  {
+  public:
+    /// The cell's lower corner @p lower and size @p h; the ball.
+    CutLevelSet(const Point<dim> &lower,
+                const double      h,
+                const Point<dim> &center,
+                const double      radius)
+      : lower(lower)
+      , h(h)
+      , center(center)
+      , radius(radius)
+    {}
+
+    /// psi at the reference point @p xi.
+    double
+    value(const Point<dim> &xi, const unsigned int = 0) const override
+    {
+      return (real(xi) - center).norm() - radius;
+    }
+
+    /// Its gradient with respect to @p xi.
+    Tensor<1, dim>
+    gradient(const Point<dim> &xi, const unsigned int = 0) const override
+    {
+      const Tensor<1, dim> r = real(xi) - center;
+      return h * r / r.norm();
+    }
+
+    /// Its Hessian with respect to @p xi.
+    SymmetricTensor<2, dim>
+    hessian(const Point<dim> &xi, const unsigned int = 0) const override
+    {
+      const Tensor<1, dim>    r = real(xi) - center;
+      const double            d = r.norm();
+      SymmetricTensor<2, dim> H;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j)
+          H[i][j] = h * h * ((i == j ? 1. : 0.) - r[i] * r[j] / (d * d)) / d;
+      return H;
+    }
+
+  private:
+    Point<dim>
+    real(const Point<dim> &xi) const
+    {
+      Point<dim> x = lower;
+      for (unsigned int d = 0; d < dim; ++d)
+        x[d] += h * xi[d];
+      return x;
+    }
+
+    const Point<dim> lower;
+    const double     h;
+    const Point<dim> center;
+    const double     radius;
+  };
+} // namespace Fidus
+
+#endif

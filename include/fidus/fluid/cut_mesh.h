@@ -1,0 +1,147 @@
+#ifndef fidus_fluid_cut_mesh_h
+#define fidus_fluid_cut_mesh_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The mesh of CutStokesInclusion: the unit box, refined in bands around
+   * the particle surfaces and in the thin gaps between them, and where
+   * each of its cells lies relative to the particles (inside one, cut by
+   * one surface, or in the fluid).
+   *
+   * Along periodic axes a particle near a face also appears shifted by one
+   * period: every ball that reaches into the box is listed with the
+   * particle it images (its owner). The mesh is made to match cell for
+   * cell across each pair of periodic faces, so that periodicity is an
+   * identity between the DoFs of matched faces (make_periodicity_
+   * constraints()) and the ghost penalties see matched cells as neighbours
+   * (periodic_neighbours()). doc/cut_element.md, "Periodic faces".
+   */
+  template <int dim>
+  class CutMesh
+  {
+  public:
+    /// A ball of the mesh: a particle or one of its periodic images.
+    struct Ball
+    {
+      Point<dim>   center;
+      double       radius = 0.;
+      unsigned int owner  = 0;
+    };
+
+    /// Where a cell lies: inside a ball (solid), or the number of surfaces
+    /// it meets and the last of those balls.
+    struct Placement
+    {
+      bool         solid = false;
+      unsigned int n_cut = 0;
+      unsigned int ball  = 0;
+    };
+
+    /// How the mesh is refined.
+    struct Settings
+    {
+      /// Global refinement of the unit box.
+      unsigned int global_level = 4;
+      /// Further levels in a band around the particle surfaces.
+      unsigned int band_levels = 0;
+      /// Width of that band in cells of the level being refined.
+      double band_cells = 3.;
+      /// Refine a cut cell closer than this many of its sizes to another
+      /// particle (0: only cells cut by two surfaces, which must be).
+      double gap_cells = 0.;
+      /// At most this many levels beyond global_level + band_levels for
+      /// the gap refinement.
+      unsigned int max_gap_levels = 14;
+      /// The periodic axes.
+      std::vector<unsigned int> periodic_axes;
+    };
+
+    /// A cell on a lower periodic face and its matched cell on the upper
+    /// one (same level, same position across the face).
+    struct PeriodicPair
+    {
+      unsigned int axis;
+      int          lower_level, lower_index;
+      int          upper_level, upper_index;
+    };
+
+    /**
+     * Build the mesh for the particles at @p centers with @p radii (the
+     * centres in the unit box; along periodic axes any value, taken
+     * modulo 1). Throws std::invalid_argument if a cell stays cut by two
+     * surfaces after the allowed gap levels.
+     */
+    CutMesh(const std::vector<Point<dim>> &centers,
+            const std::vector<double>     &radii,
+            const Settings                &settings);
+
+    /// The triangulation.
+    const Triangulation<dim> &
+    get_triangulation() const
+    {
+      return triangulation;
+    }
+
+    /// Every ball that reaches into the box.
+    const std::vector<Ball> &
+    get_balls() const
+    {
+      return balls;
+    }
+
+    /// Where the active cell @p cell lies.
+    template <typename CellIterator>
+    const Placement &
+    placement(const CellIterator &cell) const
+    {
+      return placements[cell->active_cell_index()];
+    }
+
+    /// The matched cells across periodic faces.
+    const std::vector<PeriodicPair> &
+    periodic_neighbours() const
+    {
+      return periodic_pairs;
+    }
+
+    /**
+     * Add u(upper) = u(lower) for every DoF on an upper periodic face
+     * that has a partner on the matched lower cell and is not constrained
+     * yet. Cells without unknowns (inside a particle) have no partner to
+     * give: the DoFs facing them stay free, as at a particle's inner faces.
+     * Call after the hanging-node and boundary constraints.
+     */
+    void
+    make_periodicity_constraints(const DoFHandler<dim>     &dof_handler,
+                                 AffineConstraints<double> &constraints) const;
+
+    /// Refinement flags set for thin gaps, and for matching periodic faces.
+    unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
+
+  private:
+    Triangulation<dim>        triangulation;
+    std::vector<Ball>         balls;
+    std::vector<Placement>    placements;
+    std::vector<PeriodicPair> periodic_pairs;
+
+    /// Flag the coarser cell of every unmatched pair across @p axis;
+    /// true if any flag was set.
+    bool
+    flag_periodic_mismatch(const unsigned int axis);
+
+    /// Match the cells of the faces across @p axis (the mesh matches).
+    void
+    collect_periodic_pairs(const unsigned int axis);
+  };
+} // namespace Fidus
+
+#endif

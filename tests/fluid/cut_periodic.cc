@@ -1,0 +1,176 @@
+// The cut finite element between sliding walls (CutStokesInclusion,
+// Boundary::sliding_walls: walls y = 0, 1 with the shear's velocity,
+// periodic in x; 2D, a = 0.1):
+//
+// - periodicity: a disc on the periodic face (centre x = 0, half of it
+//   imaged at x = 1) moves as the same disc at x = 1/2, its translate by a
+//   whole number of cells, to round-off; a disc at x = 0.97, off the
+//   mesh's symmetry, to the discretisation error; by the channel's point
+//   symmetry none of them translates;
+// - the walls feel the stress the particles carry: the mean of sigma_xy on
+//   the top wall and on the bottom wall (consistent residuals of their
+//   DoFs) agree with each other and with the volume average
+//   eta g + S_xy / V from the stresslet (Batchelor), two independent
+//   measurements of the same viscosity. The discrete momentum balance
+//   tested with y e_x makes this an identity of the discrete solution
+//   when no cut cell touches a wall, so it holds to round-off; the
+//   relative viscosity of the disc, (eta_r - 1) / (2 phi), lies a few per
+//   cent above the unbounded 1 (the walls' and images' share, O(a^2));
+// - a disc 0.1 a from the bottom wall, its ghost-penalty faces on the
+//   wall's DoFs, carries the stress of its mirror image near the top wall,
+//   more than the centred disc, and the two walls' stresses agree for it
+//   too (they differed by 44 % of the particle's share while the ghost
+//   faces dropped the imposed velocity of the wall's DoFs, which moved
+//   the disc's own stress by 2e-5);
+// - a pair pushed together across the periodic face, its 0.01 a gap on the
+//   face and refined there, closes as the same pair in the middle of the
+//   box (the refinement matched across the face);
+// - particles that overlap across the periodic face are refused.
+
+#include "../fidus_test.h"
+
+#include <cmath>
+#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <stdexcept>
+
+using namespace FidusTest;
+using Solver = Fidus::CutStokesInclusion<2>;
+
+/// One force-free disc a = 0.1 at (@p x, 1/2) between the walls sheared at
+/// rate 1, unit box refined 4 times, then 2 band levels.
+Solver::Result
+one_disc(const double x, const double y = 0.5)
+{
+  Solver::Settings s;
+  s.boundary          = Solver::Boundary::sliding_walls;
+  s.particles         = {{dealii::Point<2>(x, y), 0.1, {}}};
+  s.global_level      = 4;
+  s.band_levels       = 2;
+  s.quadrature_points = 8;
+  return Solver::solve(s);
+}
+
+/// Two discs a = 0.1 on y = 1/2, 0.01 a apart around x = @p mid, pushed
+/// together by forces +-1 between walls at rest; two cells across the gap.
+Solver::Result
+pushed_pair(const double mid)
+{
+  Solver::Settings     s;
+  const double         a = 0.1, x = a + 0.005 * a;
+  dealii::Tensor<1, 2> f;
+  f[0]                = 1.;
+  s.boundary          = Solver::Boundary::sliding_walls;
+  s.shear_rate        = 0.;
+  s.particles         = {{dealii::Point<2>(mid - x, 0.5), a, f},
+                         {dealii::Point<2>(mid + x, 0.5), a, -f}};
+  s.global_level      = 5;
+  s.gap_cells         = 2.;
+  s.quadrature_points = 8;
+  return Solver::solve(s);
+}
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  const Solver::Result middle = one_disc(0.5), face = one_disc(0.),
+                       off = one_disc(0.97);
+  const double omega       = middle.angular_velocity[0][2];
+  check_range("disc on the periodic face against its translate: "
+              "|omega difference| / (g/2)",
+              std::abs(face.angular_velocity[0][2] - omega) / 0.5,
+              0.,
+              1e-9);
+  check_range("disc at x = 0.97 against x = 1/2: |omega difference| / (g/2)",
+              std::abs(off.angular_velocity[0][2] - omega) / 0.5,
+              0.,
+              1e-5);
+  double translation = 0.;
+  for (const auto *r : {&middle, &face, &off})
+    translation = std::max(translation, r->velocity[0].norm() / 0.1);
+  check_range("largest |U| / (g a) of the three discs", translation, 0., 1e-5);
+  check_range("periodic refinements of the disc on the face",
+              face.n_periodic_refinements,
+              0.,
+              0.);
+
+  // A disc 0.1 a from the bottom wall, whose cut cells and ghost-penalty
+  // faces reach the wall, and its mirror image near the top wall.
+  const Solver::Result low = one_disc(0.43, 0.11), high = one_disc(0.43, 0.89);
+  check_range("disc 0.1 a from the bottom wall against its mirror image "
+              "at the top: relative difference of S_xy",
+              std::abs(low.stresslets[0][0][1] - high.stresslets[0][0][1]) /
+                high.stresslets[0][0][1],
+              0.,
+              1e-9);
+  check_range("disc 0.1 a from a wall against the centred disc: ratio of "
+              "S_xy (the wall's enhancement)",
+              low.stresslets[0][0][1] / middle.stresslets[0][0][1],
+              1.2,
+              2.);
+  for (const auto *r : {&middle, &off, &low})
+    {
+      const std::string where = r == &middle ? "disc at x = 1/2: " :
+                                r == &off    ? "disc at x = 0.97: " :
+                                            "disc 0.1 a from the bottom wall: ";
+      // The particles' share of the shear stress, S_xy / V (V = 1).
+      const double particle = r->stresslets[0][0][1];
+      const double bulk     = 1. + particle;
+      check_range(where + "top and bottom walls' sigma_xy, relative "
+                          "difference over the particles' share",
+                  std::abs(r->top_wall_stress[0] - r->bottom_wall_stress[0]) /
+                    particle,
+                  0.,
+                  1e-9);
+      check_range(where + "wall sigma_xy against eta g + S_xy / V, "
+                          "relative difference over the particles' share",
+                  std::abs(r->top_wall_stress[0] - bulk) / particle,
+                  0.,
+                  1e-9);
+      if (r != &low)
+        check_range(where + "(eta_r - 1) / (2 phi), phi = pi a^2",
+                    particle / (2. * M_PI * 0.01),
+                    1.,
+                    1.2);
+    }
+
+  const Solver::Result pair_middle = pushed_pair(0.5),
+                       pair_face   = pushed_pair(0.);
+  const double closing =
+    pair_middle.velocity[0][0] - pair_middle.velocity[1][0];
+  check_range("pair 0.01 a apart in the middle: closing speed > 0",
+              closing,
+              1e-12,
+              1.);
+  check_range("pair across the periodic face against its translate: "
+              "relative difference of the closing speed",
+              std::abs(pair_face.velocity[0][0] - pair_face.velocity[1][0] -
+                       closing) /
+                closing,
+              0.,
+              1e-6);
+  check_range("pair across the periodic face: gap refinements",
+              pair_face.n_gap_refinements,
+              1.,
+              1e6);
+
+  bool refused = false;
+  try
+    {
+      Solver::Settings bad;
+      bad.boundary  = Solver::Boundary::sliding_walls;
+      bad.particles = {{dealii::Point<2>(0.04, 0.5), 0.05, {}},
+                       {dealii::Point<2>(0.97, 0.5), 0.05, {}}};
+      Solver::solve(bad);
+    }
+  catch (const std::invalid_argument &)
+    {
+      refused = true;
+    }
+  check_range("particles overlapping across the periodic face refused",
+              refused,
+              1.,
+              1.);
+  return exit_code();
+}
