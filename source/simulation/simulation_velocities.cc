@@ -292,11 +292,11 @@ namespace Fidus
     TimerOutput::Scope scope(*timer, "fluid");
     using Cut = CutStokesInclusion<dim>;
     typename Cut::Settings s;
-    s.boundary     = prm.boundary_condition == BoundaryCondition::sliding_walls ?
-                       Cut::Boundary::sliding_walls :
-                       Cut::Boundary::linear_shear;
-    s.shear_rate   = g;
-    s.viscosity    = prm.viscosity;
+    s.boundary   = prm.boundary_condition == BoundaryCondition::sliding_walls ?
+                     Cut::Boundary::sliding_walls :
+                     Cut::Boundary::linear_shear;
+    s.shear_rate = g;
+    s.viscosity  = prm.viscosity;
     s.global_level = prm.minimum_level;
     s.band_levels  = prm.maximum_level - prm.minimum_level;
     s.gap_cells    = prm.cut_gap_cells;
