@@ -3,9 +3,14 @@
 # when it is all there already. Used by contrib/run.sh and contrib/test.sh.
 set -euo pipefail
 # bc and time: the benchmark scripts' arithmetic and peak-memory readings.
+# libopenblas0-serial: Debian's alternatives then give it to MUMPS (the
+# cut element's direct solver) in place of the reference BLAS; twice as
+# fast on 3D fronts, the same results to round-off
+# (contrib/benchmarks/blas_choice.sh, doc/performance.md). Serial, so that
+# MPI ranks do not compete with BLAS threads for the cores.
 packages=(libdeal.ii-dev numdiff libeigen3-dev libboost-dev ccache
           python3-matplotlib clang-format cmake g++ make openmpi-bin procps
-          bc time)
+          bc time libopenblas0-serial)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

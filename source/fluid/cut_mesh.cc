@@ -153,14 +153,16 @@ namespace Fidus
     for (unsigned int l = 0; l < s.band_levels; ++l)
       {
         for (const auto &cell : triangulation.active_cell_iterators())
-          for (const Ball &b : balls)
-            {
-              const double band =
-                s.band_cells * cell->diameter() / std::sqrt(dim);
-              if (std::abs((cell->center() - b.center).norm() - b.radius) <
-                  band)
-                cell->set_refine_flag();
-            }
+          {
+            const double     band = s.band_cells * cell->extent_in_direction(0);
+            const Point<dim> x    = cell->center();
+            for (const Ball &b : balls)
+              if (std::abs((x - b.center).norm() - b.radius) < band)
+                {
+                  cell->set_refine_flag();
+                  break;
+                }
+          }
         triangulation.execute_coarsening_and_refinement();
       }
 

@@ -32,6 +32,7 @@
 #include <fidus/fluid/cut_stokes_inclusion.h>
 #include <fidus/fluid/exact_rigid_inclusion.h>
 #include <limits>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -348,25 +349,33 @@ namespace Fidus
       for (unsigned int d = 0; d < dim; ++d)
         rhs(n_fluid + p * n_rigid + d) = particles[p].force[d];
 
-    // The fluid terms of one cell on the quadrature @p fe_values.
+    // The fluid terms of one cell on the quadrature @p fe_values, with the
+    // shape functions' strain, divergence and pressure evaluated once per
+    // point rather than once per pair of them.
+    std::vector<SymmetricTensor<2, dim>> eps(n_local);
+    std::vector<double>                  div(n_local), q_shape(n_local);
     const auto add_volume = [&](const FEValues<dim> &fe_values) {
       for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
         {
           const double JxW = fe_values.JxW(q);
           for (unsigned int i = 0; i < n_local; ++i)
             {
-              const auto   eps_i = fe_values[velocity].symmetric_gradient(i, q);
-              const double div_i = fe_values[velocity].divergence(i, q);
-              const double q_i   = fe_values[pressure].value(i, q);
+              eps[i]     = fe_values[velocity].symmetric_gradient(i, q);
+              div[i]     = fe_values[velocity].divergence(i, q);
+              q_shape[i] = fe_values[pressure].value(i, q);
+            }
+          for (unsigned int i = 0; i < n_local; ++i)
+            {
+              const SymmetricTensor<2, dim> e = 2. * eta * JxW * eps[i];
+              const double d = JxW * div[i], p = JxW * q_shape[i];
               for (unsigned int j = 0; j < n_local; ++j)
-                local(i, j) += (2. * eta * eps_i *
-                                  fe_values[velocity].symmetric_gradient(j, q) -
-                                div_i * fe_values[pressure].value(j, q) -
-                                q_i * fe_values[velocity].divergence(j, q)) *
-                               JxW;
+                local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
             }
         }
     };
+    // A cell without a surface is a full square of its level's size, and
+    // its matrix depends on that size only: computed once per level.
+    std::map<int, FullMatrix<double>> fluid_cell_matrix;
 
     const hp::QCollection<1> q1d{QGauss<1>(s.quadrature_points)};
     Point<dim>               one;
@@ -397,8 +406,15 @@ namespace Fidus
           ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
         if (here.n_cut == 0)
           {
-            fe_fluid.reinit(cell);
-            add_volume(fe_fluid);
+            auto cached = fluid_cell_matrix.find(cell->level());
+            if (cached == fluid_cell_matrix.end())
+              {
+                fe_fluid.reinit(cell);
+                add_volume(fe_fluid);
+                cached = fluid_cell_matrix.emplace(cell->level(), local).first;
+              }
+            else
+              local = cached->second;
             if (periodic)
               unconstrained.add(ext_dofs, local);
             constraints.distribute_local_to_global(local,
