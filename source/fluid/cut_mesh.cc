@@ -168,10 +168,10 @@ namespace Fidus
 
     // A cell cut by two surfaces would need two level sets in one
     // quadrature: refine it until each cut cell meets one surface, and with
-    // gap_cells > 0 refine the cut cells near another particle until the
-    // gap has cells across it. Only the cells at the gap are refined: the
-    // ghost penalties are assembled across hanging faces too, so a cut
-    // cell may have neighbours one level coarser or finer. The
+    // gap_cells > 0 refine the cut cells near another particle or a wall
+    // until the gap has cells across it. Only the cells at the gap are
+    // refined: the ghost penalties are assembled across hanging faces too,
+    // so a cut cell may have neighbours one level coarser or finer. The
     // triangulation keeps levels within one of each other at vertices, so
     // that the refinement grades away from the gap.
     const int max_level =
@@ -184,13 +184,19 @@ namespace Fidus
             const Placement here = place<Placement>(cell, balls);
             if (here.solid || here.n_cut == 0)
               continue;
-            bool near_other = here.n_cut >= 2;
+            bool         near_other = here.n_cut >= 2;
+            const double reach      = (s.gap_cells + 0.5 * std::sqrt(dim)) *
+                                 cell->extent_in_direction(0);
+            const Point<dim> x = cell->center();
             if (!near_other && s.gap_cells > 0.)
               for (const Ball &b : balls)
                 if (b.owner != balls[here.ball].owner &&
-                    (cell->center() - b.center).norm() - b.radius <
-                      (s.gap_cells + 0.5 * std::sqrt(dim)) *
-                        cell->extent_in_direction(0))
+                    (x - b.center).norm() - b.radius < reach)
+                  near_other = true;
+            // A thin gap between a particle and a wall is refined alike.
+            if (!near_other && s.gap_cells > 0.)
+              for (unsigned int d = 0; d < dim; ++d)
+                if (!periodic[d] && std::min(x[d], 1. - x[d]) < reach)
                   near_other = true;
             if (!near_other)
               continue;

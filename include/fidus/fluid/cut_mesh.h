@@ -56,12 +56,13 @@ namespace Fidus
       /// Width of that band in cells of the level being refined.
       double band_cells = 3.;
       /// Refine a cut cell closer than this many of its sizes to another
-      /// particle (0: only cells cut by two surfaces, which must be).
+      /// particle or to a wall (0: only cells cut by two surfaces, which
+      /// must be).
       double gap_cells = 0.;
       /// At most this many levels beyond global_level + band_levels for
       /// the gap refinement.
       unsigned int max_gap_levels = 14;
-      /// The periodic axes.
+      /// The periodic axes; the faces of every other axis are walls.
       std::vector<unsigned int> periodic_axes;
     };
 
