@@ -23,8 +23,8 @@
 //   translates of the first scene's but for the cells refined to match
 //   the periodic faces (4e-6 a measured after 3 steps, where levels 5 and
 //   6 differ by 5e-4 a over 10 steps); the walls' shear stress equals the
-//   volume average's, an identity of the discrete solution
-//   (doc/cut_element.md, "Periodic faces").
+//   volume average's, an identity of the discrete solution up to the cut
+//   quadratures' error (doc/cut_element.md, "Periodic faces").
 
 #include "../fidus_test.h"
 

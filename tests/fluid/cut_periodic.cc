@@ -12,8 +12,9 @@
 //   DoFs) agree with each other and with the volume average
 //   eta g + S_xy / V from the stresslet (Batchelor), two independent
 //   measurements of the same viscosity. The discrete momentum balance
-//   tested with y e_x makes this an identity of the discrete solution
-//   when no cut cell touches a wall, so it holds to round-off; the
+//   tested with y e_x makes this an identity of the discrete solution, up
+//   to the cut quadratures' error in the divergence theorem (round-off at
+//   these positions, doc/cut_element.md); the
 //   relative viscosity of the disc, (eta_r - 1) / (2 phi), lies a few per
 //   cent above the unbounded 1 (the walls' and images' share, O(a^2));
 // - a disc 0.1 a from the bottom wall, its ghost-penalty faces on the
