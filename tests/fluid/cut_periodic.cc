@@ -30,6 +30,8 @@
 // - a pair pushed together across the periodic face, its 0.01 a gap on the
 //   face and refined there, closes as the same pair in the middle of the
 //   box (the refinement matched across the face);
+// - in 3D, periodic in x and z, a sphere on the edge where the periodic
+//   faces meet moves and stresses as its translate to the centre;
 // - particles that overlap across the periodic face are refused.
 
 #include "../fidus_test.h"
@@ -199,6 +201,42 @@ main(int argc, char **argv)
               pair_face.n_gap_refinements,
               1.,
               1e6);
+
+  // 3D, periodic in x and z: a sphere a = 0.15 centred on the edge where
+  // the two periodic faces meet (x = z = 0, imaged three times) against
+  // its translate to the box's centre (level 2, one band level).
+  {
+    using Solver3     = Fidus::CutStokesInclusion<3>;
+    const auto sphere = [](const dealii::Point<3> &c) {
+      Solver3::Settings s;
+      s.boundary     = Solver3::Boundary::sliding_walls;
+      s.particles    = {{c, 0.15, {}}};
+      s.global_level = 2;
+      s.band_levels  = 1;
+      return Solver3::solve(s);
+    };
+    const Solver3::Result centre = sphere(dealii::Point<3>(0.5, 0.5, 0.5)),
+                          edge   = sphere(dealii::Point<3>(0., 0.5, 0.));
+    check_range("3D: sphere on the periodic edge against its translate: "
+                "|omega difference| / (g/2)",
+                (edge.angular_velocity[0] - centre.angular_velocity[0]).norm() /
+                  0.5,
+                0.,
+                1e-9);
+    check_range("3D: sphere on the periodic edge against its translate: "
+                "relative difference of S_xy",
+                std::abs(edge.stresslets[0][0][1] -
+                         centre.stresslets[0][0][1]) /
+                  centre.stresslets[0][0][1],
+                0.,
+                1e-9);
+    check_range("3D: sphere on the periodic edge, top and bottom walls' "
+                "sigma_xy, relative difference over the particle's share",
+                std::abs(edge.top_wall_stress[0] - edge.bottom_wall_stress[0]) /
+                  edge.stresslets[0][0][1],
+                0.,
+                1e-9);
+  }
 
   bool refused = false;
   try
