@@ -296,7 +296,7 @@ namespace Fidus
       // 2 in 2D: the range with which a lubricated pair in shear does not
       // overlap at any level. A held pair would want 0.7-1, but that
       // changes the dense scene's viscosity by a third, with no reference
-      // for it yet (doc/lubrication.md, "Two discs held in shear").
+      // for it yet (doc/lubrication_2d.md, "Two discs held in shear").
       lubrication_flow_range =
         gap_or_auto("Lubrication flow range", dim == 3 ? 0.45 : 2.);
       lubrication_tangential = prm.get_bool("Lubrication tangential terms");

@@ -40,7 +40,7 @@ namespace Fidus::Contact
     /// Gap (length) down to which the mesh carries the tangential
     /// resistance of a particle sliding along a wall; < 0: the same as
     /// wall_range. The mesh resolves sliding less far down than the squeeze
-    /// (doc/lubrication.md, "Squeeze of a disc against a wall"), so wall
+    /// (doc/lubrication_2d.md, "Squeeze of a disc against a wall"), so wall
     /// bonds reach out to the larger of the two, and a bond between them
     /// corrects only the tangential terms.
     double tangential_wall_range = -1.;
