@@ -835,24 +835,33 @@ namespace Fidus
         hanging.close();
         Vector<double> residual(n_total);
         unconstrained.vmult(residual, solution);
+        // Phi for each wall (side 0: y = 0, 1: y = 1) and component a, from
+        // one pass over the cells.
         const auto &support = taylor_hood.get_unit_support_points();
+        std::array<std::array<Vector<double>, dim>, 2> phi;
+        for (auto &wall : phi)
+          for (auto &component : wall)
+            component.reinit(n_total);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          for (unsigned int side = 0; side < 2; ++side)
+            if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
+              {
+                cell->get_dof_indices(dofs);
+                for (unsigned int i = 0; i < n_local; ++i)
+                  {
+                    const unsigned int a =
+                      taylor_hood.system_to_component_index(i).first;
+                    if (a < dim && std::abs(support[i][1] - side) < 1e-12)
+                      phi[side][a][dofs[i]] = 1.;
+                  }
+              }
         for (unsigned int side = 0; side < 2; ++side)
           for (unsigned int a = 0; a < dim; ++a)
             {
-              Vector<double> phi(n_total);
-              for (const auto &cell : dof_handler.active_cell_iterators())
-                if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
-                  {
-                    cell->get_dof_indices(dofs);
-                    for (unsigned int i = 0; i < n_local; ++i)
-                      if (taylor_hood.system_to_component_index(i).first == a &&
-                          std::abs(support[i][1] - side) < 1e-12)
-                        phi[dofs[i]] = 1.;
-                  }
-              hanging.distribute(phi);
+              hanging.distribute(phi[side][a]);
               // sigma e_y: the force on the top wall (n = e_y), minus the
               // force on the bottom one.
-              const double force = phi * residual;
+              const double force = phi[side][a] * residual;
               if (side == 1)
                 result.top_wall_stress[a] = force;
               else

@@ -327,15 +327,13 @@ namespace Fidus
             }
         for (unsigned int j = 0; j < i; ++j)
           {
-            // The nearest image along periodic axes (period 1).
+            // The nearest image along periodic axes.
             double d2 = 0.;
             for (unsigned int d = 0; d < dim; ++d)
-              {
-                double x = X[i][d] - X[j][d];
-                if (box.is_periodic[d])
-                  x -= std::round(x);
-                d2 += x * x;
-              }
+              d2 +=
+                std::pow(Contact::PairSearch::minimum_image(X[i][d] - X[j][d],
+                                                            box.periods[d]),
+                         2);
             const double b   = prm.radii[j];
             const double gap = std::sqrt(d2) - a - b;
             const double cut_by =
