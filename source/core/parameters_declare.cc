@@ -72,8 +72,10 @@ namespace Fidus
         "fluid outside the particles only, their rigid motions imposed by "
         "Nitsche's method, on a mesh built for every solve (from Mesh "
         "refinement/Minimum level to Maximum level at the surfaces, thin "
-        "gaps further); a serial sparse direct solve, for few particles in "
-        "the unit box in linear shear (doc/cut_element.md).");
+        "gaps, between particles and to the walls, further); a serial "
+        "sparse direct solve, in the unit box in linear shear or between "
+        "sliding walls, from a pair to a dense 2D suspension "
+        "(doc/cut_element.md).");
       prm.declare_entry(
         "Cut minimum gap",
         "1e-4",

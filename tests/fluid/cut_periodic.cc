@@ -175,6 +175,17 @@ main(int argc, char **argv)
                   0.5,
                 0.,
                 1e-3);
+    // Without the walls' gap rule, 1, 2 and 4 gap cells would see the same
+    // unrefined gap: the refinement and the rotation show the rule acts
+    // (unrefined, omega = +0.205 g).
+    check_range("disc 2e-3 a from the wall, 2 gap cells: gap refinements",
+                two.n_gap_refinements,
+                1.,
+                1e6);
+    check_range("disc 2e-3 a from the wall: omega / g (resolved -0.030)",
+                four.angular_velocity[0][2],
+                -0.1,
+                0.);
     check_range("disc 2e-3 a from the wall: its x-velocity over the "
                 "wall's, g/2 (it slides with the wall)",
                 -four.velocity[0][0] / 0.5,
