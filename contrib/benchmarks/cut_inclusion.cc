@@ -17,6 +17,21 @@
 
 namespace
 {
+  /// LINEAR_SOLVER = direct | iterative in the environment (default: the
+  /// solver's choice), ITERATIVE_TOLERANCE its tolerance.
+  template <int dim>
+  void
+  set_linear_solver(typename Fidus::CutStokesInclusion<dim>::Settings &s)
+  {
+    using Solver = typename Fidus::CutStokesInclusion<dim>::LinearSolver;
+    if (const char *v = std::getenv("LINEAR_SOLVER"))
+      s.linear_solver = std::string(v) == "direct"    ? Solver::direct :
+                        std::string(v) == "iterative" ? Solver::iterative :
+                                                        Solver::automatic;
+    if (const char *v = std::getenv("ITERATIVE_TOLERANCE"))
+      s.iterative_tolerance = std::atof(v);
+  }
+
   template <int dim>
   void
   sweep(const double                     a,
@@ -34,13 +49,13 @@ namespace
       "| level | finest h / a | max omega error | mean omega error | "
       "max |U|/(g a) | mean |U|/(g a) | velocity L2 error | max stresslet "
       "error | unknowns (mean) | cut cells (mean) | wall s (mean) | largest "
-      "residual |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "residual | FGMRES (mean) | CG of W (mean) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const unsigned int level : levels)
       {
         double mw = 0., sw = 0., mu = 0., su = 0., mv = 0., h = 0., t = 0.,
                mr = 0., ms = 0.;
-        double dofs = 0., cut = 0.;
+        double dofs = 0., cut = 0., iterations = 0., setup = 0.;
         for (const auto &c : centers)
           {
             typename Fidus::CutStokesInclusion<dim>::Settings s;
@@ -55,8 +70,11 @@ namespace
               s.ghost_pressure = std::atof(v);
             if (const char *v = std::getenv("QUADRATURE_POINTS"))
               s.quadrature_points = std::atoi(v);
+            set_linear_solver<dim>(s);
             const auto r = Fidus::CutStokesInclusion<dim>::solve(s);
-            mw           = std::max(mw, r.omega_error);
+            iterations += r.n_iterations;
+            setup += r.n_setup_iterations;
+            mw = std::max(mw, r.omega_error);
             sw += r.omega_error;
             mu = std::max(mu, r.translation);
             su += r.translation;
@@ -69,7 +87,7 @@ namespace
             cut += r.n_cut_cells;
           }
         std::printf("| %u | %.3f | %.2e | %.2e | %.2e | %.2e | %.2e | %.2e | "
-                    "%.0f | %.0f | %.2f | %.1e |\n",
+                    "%.0f | %.0f | %.2f | %.1e | %.1f | %.1f |\n",
                     level,
                     h / a,
                     mw,
@@ -81,7 +99,9 @@ namespace
                     dofs / n,
                     cut / n,
                     t / n,
-                    mr);
+                    mr,
+                    iterations / n,
+                    setup / n);
         std::fflush(stdout);
       }
   }
@@ -128,6 +148,7 @@ namespace
             s.gap_cells = std::atof(v);
           if (const char *v = std::getenv("QUADRATURE_POINTS"))
             s.quadrature_points = std::atoi(v);
+          set_linear_solver<2>(s);
           const auto   r       = Solver::solve(s);
           const double closing = -n * (r.velocity[1] - r.velocity[0]);
           std::printf("| %g | %u | %.1f | %.6e | %u | %u | %u | %.2f | %.1e | "

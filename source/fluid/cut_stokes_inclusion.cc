@@ -29,8 +29,10 @@
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/fluid/cut_level_set.h>
 #include <fidus/fluid/cut_mesh.h>
+#include <fidus/fluid/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_stokes_inclusion.h>
 #include <fidus/fluid/exact_rigid_inclusion.h>
+#include <fidus/fluid/rigid_mode.h>
 #include <limits>
 #include <map>
 #include <memory>
@@ -41,31 +43,6 @@ namespace Fidus
 {
   namespace
   {
-    /// The rigid motions: e_0..e_{dim-1}, then the rotations about the
-    /// centre (one in 2D, e_k x r in 3D).
-    template <int dim>
-    Tensor<1, dim>
-    rigid_mode(const unsigned int k, const Tensor<1, dim> &r)
-    {
-      Tensor<1, dim> w;
-      if (k < dim)
-        w[k] = 1.;
-      else if (dim == 2)
-        {
-          w[0] = -r[1];
-          w[1] = r[0];
-        }
-      else
-        {
-          // e_m x r with m = k - dim.
-          const unsigned int m  = k - dim;
-          const unsigned int m1 = (m + 1) % 3, m2 = (m + 2) % 3;
-          w[m2] = r[m1];
-          w[m1] = -r[m2];
-        }
-      return w;
-    }
-
     /// u = g (y - 1/2) e_x, p = 0.
     template <int dim>
     class LinearShear : public Function<dim>
@@ -338,11 +315,19 @@ namespace Fidus
     SparseMatrix<double> unconstrained;
     if (periodic)
       unconstrained.reinit(sparsity);
+    // The iterative solver's pressure preconditioner takes the pressure
+    // mass matrix over the fluid.
+    const bool iterative = s.linear_solver == LinearSolver::iterative ||
+                           (s.linear_solver == LinearSolver::automatic &&
+                            dim == 3 && n_total > 100000);
+    SparseMatrix<double> pressure_mass;
+    if (iterative)
+      pressure_mass.reinit(sparsity);
     Vector<double> rhs(n_total), solution(n_total);
 
-    const unsigned int                   n_ext = n_local + n_rigid;
-    FullMatrix<double>                   local(n_ext, n_ext);
-    Vector<double>                       local_rhs(n_ext);
+    const unsigned int n_ext = n_local + n_rigid;
+    FullMatrix<double> local(n_ext, n_ext), local_mass(n_ext, n_ext);
+    Vector<double>     local_rhs(n_ext);
     std::vector<types::global_dof_index> ext_dofs(n_ext);
     // The external forces load the translations of the rigid unknowns.
     for (unsigned int p = 0; p < particles.size(); ++p)
@@ -370,12 +355,21 @@ namespace Fidus
               const double d = JxW * div[i], p = JxW * q_shape[i];
               for (unsigned int j = 0; j < n_local; ++j)
                 local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
+              if (iterative)
+                for (unsigned int j = 0; j < n_local; ++j)
+                  local_mass(i, j) += p * q_shape[j] / eta;
             }
         }
     };
+    const auto add_mass = [&]() {
+      if (iterative)
+        constraints.distribute_local_to_global(local_mass,
+                                               ext_dofs,
+                                               pressure_mass);
+    };
     // A cell without a surface is a full square of its level's size, and
     // its matrix depends on that size only: computed once per level.
-    std::map<int, FullMatrix<double>> fluid_cell_matrix;
+    std::map<int, FullMatrix<double>> fluid_cell_matrix, fluid_cell_mass;
 
     const hp::QCollection<1> q1d{QGauss<1>(s.quadrature_points)};
     Point<dim>               one;
@@ -396,8 +390,9 @@ namespace Fidus
       {
         if (cell->active_fe_index() != 0)
           continue;
-        local     = 0.;
-        local_rhs = 0.;
+        local      = 0.;
+        local_mass = 0.;
+        local_rhs  = 0.;
         cell->get_dof_indices(dofs);
         std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
         const Placement &here = placed(cell);
@@ -412,9 +407,14 @@ namespace Fidus
                 fe_fluid.reinit(cell);
                 add_volume(fe_fluid);
                 cached = fluid_cell_matrix.emplace(cell->level(), local).first;
+                fluid_cell_mass.emplace(cell->level(), local_mass);
               }
             else
-              local = cached->second;
+              {
+                local      = cached->second;
+                local_mass = fluid_cell_mass[cell->level()];
+              }
+            add_mass();
             if (periodic)
               unconstrained.add(ext_dofs, local);
             constraints.distribute_local_to_global(local,
@@ -482,6 +482,7 @@ namespace Fidus
                       JxW;
               }
           }
+        add_mass();
         if (periodic)
           unconstrained.add(ext_dofs, local);
         constraints.distribute_local_to_global(local,
@@ -637,46 +638,89 @@ namespace Fidus
         for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
           it->value() *= scale[i] * scale[it->column()];
 
-      TrilinosWrappers::SparseMatrix trilinos_matrix;
-      trilinos_matrix.reinit(matrix);
-      const IndexSet                all = complete_index_set(n_total);
-      TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF),
-        b(all, MPI_COMM_SELF);
-      SolverControl                                   control;
-      std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
-      for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
-        try
-          {
-            direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-              control,
-              TrilinosWrappers::SolverDirect::AdditionalData(false, name));
-            direct->initialize(trilinos_matrix);
-            break;
-          }
-        catch (const ExceptionBase &)
-          {
-            direct.reset();
-          }
-      if (!direct)
-        throw std::runtime_error(
-          "CutStokesInclusion: the direct solvers (MUMPS, then KLU) failed; "
-          "the system is numerically singular (are the ghost penalties "
-          "zero?)");
       // Scaled: A' = D A D, b' = D b, x = D x'; A' r' = D (b - A x).
       Vector<double> scaled_rhs(n_total), scaled_solution(n_total),
         residual(n_total);
       for (unsigned int i = 0; i < n_total; ++i)
         scaled_rhs[i] = scale[i] * rhs[i];
-      residual = scaled_rhs;
-      for (unsigned int step = 0; step < 3; ++step)
+      if (iterative)
         {
+          typename CutSaddlePointSolver<dim>::Layout layout;
+          layout.kind.assign(n_total, 2);
+          layout.constrained.assign(n_total, false);
+          layout.support_point.resize(n_total);
+          layout.component.assign(n_total, 0);
+          for (unsigned int i = 0; i < n_fluid; ++i)
+            {
+              layout.kind[i]        = is_pressure[i] ? 1 : 0;
+              layout.constrained[i] = constraints.is_constrained(i);
+            }
+          const auto &unit_points = taylor_hood.get_unit_support_points();
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->active_fe_index() == 0)
+              {
+                cell->get_dof_indices(dofs);
+                const double h = cell->extent_in_direction(0);
+                for (unsigned int k = 0; k < n_local; ++k)
+                  {
+                    layout.support_point[dofs[k]] =
+                      cell->vertex(0) + h * unit_points[k];
+                    layout.component[dofs[k]] =
+                      taylor_hood.system_to_component_index(k).first;
+                  }
+              }
           for (unsigned int i = 0; i < n_total; ++i)
-            b[i] = residual[i];
-          direct->solve(x, b);
-          for (unsigned int i = 0; i < n_total; ++i)
-            scaled_solution[i] += x[i];
+            for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i);
+                 ++it)
+              it->value() *= scale[i] * scale[it->column()];
+          CutSaddlePointSolver<dim> solver(matrix, pressure_mass, layout);
+          const auto                statistics = solver.solve(scaled_solution,
+                                               scaled_rhs,
+                                               s.iterative_tolerance,
+                                               s.iterative_max_iterations);
+          result.n_iterations                  = statistics.iterations;
+          result.n_setup_iterations            = statistics.setup_iterations;
           matrix.vmult(residual, scaled_solution);
           residual.sadd(-1., scaled_rhs);
+        }
+      else
+        {
+          TrilinosWrappers::SparseMatrix trilinos_matrix;
+          trilinos_matrix.reinit(matrix);
+          const IndexSet                all = complete_index_set(n_total);
+          TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF),
+            b(all, MPI_COMM_SELF);
+          SolverControl                                   control;
+          std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+          for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
+            try
+              {
+                direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+                  control,
+                  TrilinosWrappers::SolverDirect::AdditionalData(false, name));
+                direct->initialize(trilinos_matrix);
+                break;
+              }
+            catch (const ExceptionBase &)
+              {
+                direct.reset();
+              }
+          if (!direct)
+            throw std::runtime_error(
+              "CutStokesInclusion: the direct solvers (MUMPS, then KLU) failed; "
+              "the system is numerically singular (are the ghost penalties "
+              "zero?)");
+          residual = scaled_rhs;
+          for (unsigned int step = 0; step < 3; ++step)
+            {
+              for (unsigned int i = 0; i < n_total; ++i)
+                b[i] = residual[i];
+              direct->solve(x, b);
+              for (unsigned int i = 0; i < n_total; ++i)
+                scaled_solution[i] += x[i];
+              matrix.vmult(residual, scaled_solution);
+              residual.sadd(-1., scaled_rhs);
+            }
         }
       double r2 = 0., b2 = 0.;
       for (unsigned int i = 0; i < n_total; ++i)

@@ -36,9 +36,9 @@ namespace Fidus
    * sliding walls, the walls y = 0, 1 take the shear's velocity and the
    * other axes are periodic (CutMesh matches the faces cell for cell).
    *
-   * It solves one serial system with a sparse direct solver, on a mesh
-   * built for the particles given: cheap for few particles in 2D, the
-   * limit in 3D.
+   * It solves one serial system, on a mesh built for the particles given:
+   * with a sparse direct solver in 2D, and iteratively
+   * (CutSaddlePointSolver) in 3D, where the factorisation is the limit.
    */
   template <int dim>
   class CutStokesInclusion
@@ -66,6 +66,19 @@ namespace Fidus
       /// g (y - 1/2) e_x on the walls y = 0 and y = 1, periodic along
       /// every other axis (a particle may cross those faces).
       sliding_walls
+    };
+
+    /// How the linear system is solved.
+    enum class LinearSolver
+    {
+      /// Iterative in 3D above 100 000 unknowns, where the factorisation
+      /// takes more time and several GB (doc/cut_element.md, "The
+      /// iterative solver"); direct otherwise.
+      automatic,
+      /// MUMPS (KLU where it is missing), with iterative refinement.
+      direct,
+      /// FGMRES with a block preconditioner (CutSaddlePointSolver).
+      iterative
     };
 
     /// The scene and the discretisation's parameters.
@@ -106,6 +119,14 @@ namespace Fidus
       /// At most this many levels beyond global_level + band_levels for
       /// those refinements.
       unsigned int max_gap_levels = 14;
+      /// The linear solver.
+      LinearSolver linear_solver = LinearSolver::automatic;
+      /// Relative residual of the diagonally scaled system at which the
+      /// iterative solver stops.
+      double iterative_tolerance = 1e-10;
+      /// FGMRES iterations after which the iterative solver gives up (and
+      /// throws, naming the residual reached).
+      unsigned int iterative_max_iterations = 2000;
     };
 
     /// What one solve gives.
@@ -150,8 +171,11 @@ namespace Fidus
       unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
       /// Finest cell size.
       double h = 0.;
-      /// ||A x - b|| / ||b|| of the direct solve.
+      /// ||A x - b|| / ||b|| of the solve.
       double residual = 0.;
+      /// FGMRES iterations, and CG iterations of its setup, of the
+      /// iterative solver (0 for the direct one).
+      unsigned int n_iterations = 0, n_setup_iterations = 0;
       /// Wall seconds of the whole solve (setup, assembly, factorisation).
       double seconds = 0.;
     };
