@@ -233,6 +233,7 @@ namespace Fidus
                                        FluidModel::cut_finite_element;
       cut_minimum_gap       = prm.get_double("Cut minimum gap");
       cut_gap_cells         = prm.get_double("Cut gap cells");
+      cut_linear_solver     = prm.get("Cut linear solver");
       viscosity             = prm.get_double("Viscosity");
       penalty_factor        = prm.get_double("Penalty factor");
       velocity_degree       = prm.get_integer("Velocity degree");

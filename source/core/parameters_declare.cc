@@ -72,10 +72,20 @@ namespace Fidus
         "fluid outside the particles only, their rigid motions imposed by "
         "Nitsche's method, on a mesh built for every solve (from Mesh "
         "refinement/Minimum level to Maximum level at the surfaces, thin "
-        "gaps, between particles and to the walls, further); a serial "
-        "sparse direct solve, in the unit box in linear shear or between "
-        "sliding walls, from a pair to a dense 2D suspension "
+        "gaps, between particles and to the walls, further); one serial "
+        "solve (Cut linear solver), in the unit box in linear shear or "
+        "between sliding walls, from a pair to a dense 2D suspension "
         "(doc/cut_element.md).");
+      prm.declare_entry(
+        "Cut linear solver",
+        "automatic",
+        Patterns::Selection("automatic|direct|iterative"),
+        "With 'cut finite element': 'direct' factorises the system (MUMPS); "
+        "'iterative' runs FGMRES with an AMG block preconditioner to the "
+        "relative residual 1e-10; 'automatic' is iterative in 3D above "
+        "100000 unknowns, where the factorisation is slower and takes "
+        "several GB, and direct otherwise (doc/cut_element.md, 'The "
+        "iterative solver').");
       prm.declare_entry(
         "Cut minimum gap",
         "1e-4",

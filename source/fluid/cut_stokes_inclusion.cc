@@ -316,13 +316,33 @@ namespace Fidus
     if (periodic)
       unconstrained.reinit(sparsity);
     // The iterative solver's pressure preconditioner takes the pressure
-    // mass matrix over the fluid.
+    // mass matrix over the fluid, on the pressures' own pattern.
     const bool iterative = s.linear_solver == LinearSolver::iterative ||
                            (s.linear_solver == LinearSolver::automatic &&
                             dim == 3 && n_total > 100000);
-    SparseMatrix<double> pressure_mass;
+    SparsityPattern           mass_sparsity;
+    SparseMatrix<double>      pressure_mass;
+    std::vector<unsigned int> pressure_shapes;
+    for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
+      if (taylor_hood.system_to_component_index(k).first == dim)
+        pressure_shapes.push_back(k);
+    FullMatrix<double>                   local_pressure(pressure_shapes.size(),
+                                      pressure_shapes.size());
+    std::vector<types::global_dof_index> pressure_dof_indices(
+      pressure_shapes.size());
     if (iterative)
-      pressure_mass.reinit(sparsity);
+      {
+        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+        coupling[dim][dim] = DoFTools::always;
+        DynamicSparsityPattern mass_dsp(n_fluid, n_fluid);
+        DoFTools::make_sparsity_pattern(dof_handler,
+                                        coupling,
+                                        mass_dsp,
+                                        constraints,
+                                        true);
+        mass_sparsity.copy_from(mass_dsp);
+        pressure_mass.reinit(mass_sparsity);
+      }
     Vector<double> rhs(n_total), solution(n_total);
 
     const unsigned int n_ext = n_local + n_rigid;
@@ -362,10 +382,18 @@ namespace Fidus
         }
     };
     const auto add_mass = [&]() {
-      if (iterative)
-        constraints.distribute_local_to_global(local_mass,
-                                               ext_dofs,
-                                               pressure_mass);
+      if (!iterative)
+        return;
+      for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+        {
+          pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
+          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+            local_pressure(a, b) =
+              local_mass(pressure_shapes[a], pressure_shapes[b]);
+        }
+      constraints.distribute_local_to_global(local_pressure,
+                                             pressure_dof_indices,
+                                             pressure_mass);
     };
     // A cell without a surface is a full square of its level's size, and
     // its matrix depends on that size only: computed once per level.
@@ -669,7 +697,7 @@ namespace Fidus
                       taylor_hood.system_to_component_index(k).first;
                   }
               }
-          for (unsigned int i = 0; i < n_total; ++i)
+          for (unsigned int i = 0; i < n_fluid; ++i)
             for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i);
                  ++it)
               it->value() *= scale[i] * scale[it->column()];

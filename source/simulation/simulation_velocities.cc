@@ -300,6 +300,10 @@ namespace Fidus
     s.global_level = prm.minimum_level;
     s.band_levels  = prm.maximum_level - prm.minimum_level;
     s.gap_cells    = prm.cut_gap_cells;
+    s.linear_solver =
+      prm.cut_linear_solver == "direct"    ? Cut::LinearSolver::direct :
+      prm.cut_linear_solver == "iterative" ? Cut::LinearSolver::iterative :
+                                             Cut::LinearSolver::automatic;
     // A pair's cut cells away from its gap are as coarse as the Maximum
     // level, where 4 Gauss points per direction leave a quadrature error
     // of 1e-4 in the velocities at level 5 (a = 1.6 cells), seen as a
@@ -377,11 +381,11 @@ namespace Fidus
     cut_dofs    = r.n_dofs;
     fluid_stats = typename StokesSolver<dim>::Statistics();
     // A direct solve that lost accuracy gives no error: its residual is
-    // checked.
+    // checked (an iterative one that does not converge throws).
     if (!(r.residual < 1e-8))
       warnings.warn("cut element: inaccurate solve",
                     where +
-                      ": the sparse direct solve's relative residual "
+                      ": the linear solve's relative residual "
                       "is " +
                       std::to_string(r.residual) + " > 1e-8",
                     step,

@@ -142,6 +142,8 @@ namespace Fidus
     double cut_minimum_gap = 1e-4;
     /// Fluid/Cut gap cells: cells across a thin gap of the cut element.
     double cut_gap_cells = 2.;
+    /// Fluid/Cut linear solver: automatic, direct or iterative.
+    std::string cut_linear_solver = "automatic";
     /// Sub-grid lubrication (Fluid/Lubrication correction) for gaps below
     /// lubrication_range * h_finest (Fluid/Lubrication range).
     bool lubrication = false;
