@@ -167,7 +167,20 @@ namespace Fidus
         // shorter).
         SolverControl            control(1000, 1e-4 * column.l2_norm());
         SolverCG<Vector<double>> cg(control);
-        cg.solve(velocity_matrix, w[k], column, velocity_amg);
+        try
+          {
+            cg.solve(velocity_matrix, w[k], column, velocity_amg);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            std::ostringstream message;
+            message << "CutSaddlePointSolver: CG on the velocity block "
+                       "(for the rigid unknowns' Schur complement) did not "
+                       "reach 1e-4 in 1000 iterations (reached "
+                    << e.last_residual / column.l2_norm()
+                    << "); is the Nitsche parameter too small?";
+            throw std::runtime_error(message.str());
+          }
         statistics.setup_iterations += control.last_step();
       }
     FullMatrix<double> schur(n_v, n_v);

@@ -380,6 +380,9 @@ namespace Fidus
     cut_cells   = r.n_cells;
     cut_dofs    = r.n_dofs;
     fluid_stats = typename StokesSolver<dim>::Statistics();
+    // The iterative solver's FGMRES iterations (0 when solved directly)
+    // go to the linear_iterations column.
+    fluid_stats.linear_iterations = r.n_iterations;
     // A direct solve that lost accuracy gives no error: its residual is
     // checked (an iterative one that does not converge throws).
     if (!(r.residual < 1e-8))
