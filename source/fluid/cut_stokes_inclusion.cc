@@ -345,9 +345,9 @@ namespace Fidus
       }
     Vector<double> rhs(n_total), solution(n_total);
 
-    const unsigned int n_ext = n_local + n_rigid;
-    FullMatrix<double> local(n_ext, n_ext), local_mass(n_ext, n_ext);
-    Vector<double>     local_rhs(n_ext);
+    const unsigned int                   n_ext = n_local + n_rigid;
+    FullMatrix<double>                   local(n_ext, n_ext);
+    Vector<double>                       local_rhs(n_ext);
     std::vector<types::global_dof_index> ext_dofs(n_ext);
     // The external forces load the translations of the rigid unknowns.
     for (unsigned int p = 0; p < particles.size(); ++p)
@@ -375,22 +375,19 @@ namespace Fidus
               const double d = JxW * div[i], p = JxW * q_shape[i];
               for (unsigned int j = 0; j < n_local; ++j)
                 local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
-              if (iterative)
-                for (unsigned int j = 0; j < n_local; ++j)
-                  local_mass(i, j) += p * q_shape[j] / eta;
             }
+          if (iterative)
+            for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+              for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+                local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
+                                        q_shape[pressure_shapes[b]] / eta;
         }
     };
     const auto add_mass = [&]() {
       if (!iterative)
         return;
       for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-        {
-          pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
-          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
-            local_pressure(a, b) =
-              local_mass(pressure_shapes[a], pressure_shapes[b]);
-        }
+        pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
       constraints.distribute_local_to_global(local_pressure,
                                              pressure_dof_indices,
                                              pressure_mass);
@@ -418,9 +415,9 @@ namespace Fidus
       {
         if (cell->active_fe_index() != 0)
           continue;
-        local      = 0.;
-        local_mass = 0.;
-        local_rhs  = 0.;
+        local          = 0.;
+        local_pressure = 0.;
+        local_rhs      = 0.;
         cell->get_dof_indices(dofs);
         std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
         const Placement &here = placed(cell);
@@ -435,12 +432,12 @@ namespace Fidus
                 fe_fluid.reinit(cell);
                 add_volume(fe_fluid);
                 cached = fluid_cell_matrix.emplace(cell->level(), local).first;
-                fluid_cell_mass.emplace(cell->level(), local_mass);
+                fluid_cell_mass.emplace(cell->level(), local_pressure);
               }
             else
               {
-                local      = cached->second;
-                local_mass = fluid_cell_mass[cell->level()];
+                local          = cached->second;
+                local_pressure = fluid_cell_mass[cell->level()];
               }
             add_mass();
             if (periodic)

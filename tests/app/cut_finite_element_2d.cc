@@ -25,6 +25,8 @@
 //   6 differ by 5e-4 a over 10 steps); the walls' shear stress equals the
 //   volume average's, an identity of the discrete solution up to the cut
 //   quadratures' error (doc/cut_element.md, "Periodic faces").
+// - Fluid/Cut linear solver = iterative gives the direct solver's
+//   trajectory, and its FGMRES iterations reach statistics.csv.
 
 #include "../fidus_test.h"
 
@@ -42,7 +44,8 @@ run(const std::string &name,
     const unsigned int level,
     const std::string &positions = "",
     const double       a         = radius,
-    const std::string &boundary  = "linear shear")
+    const std::string &boundary  = "linear shear",
+    const std::string &fluid     = "")
 {
   std::ostringstream prm;
   prm << "set Dimension = 2\n"
@@ -50,7 +53,8 @@ run(const std::string &name,
       << "subsection Domain\n  set Boundary condition = " << boundary
       << "\nend\n"
       << "subsection Fluid\n  set Model = cut finite element\n"
-      << "  set Cut minimum gap = 1e-3\nend\n"
+      << "  set Cut minimum gap = 1e-3\n"
+      << fluid << "end\n"
       << "subsection Particles\n  set Radius = " << a << "\n"
       << "  set Positions = ";
   if (positions.empty())
@@ -170,6 +174,45 @@ main(int argc, char **argv)
                 (sliding.stress.hydrodynamic_shear_stress - 1.),
               0.,
               1e-6);
+
+  // Fluid/Cut linear solver: the iterative solver gives the direct one's
+  // trajectory (both solve the same system, to 1e-10 and to round-off),
+  // and its FGMRES iterations reach statistics.csv.
+  const auto with_solver = [](const std::string &solver) {
+    return run(solver,
+               0.4,
+               4,
+               "",
+               radius,
+               "linear shear",
+               "  set Cut linear solver = " + solver + "\n");
+  };
+  const Fidus::RunSummary direct    = with_solver("direct"),
+                          iterative = with_solver("iterative");
+  check_range("Cut linear solver: iterative against direct, "
+              "|X difference| / a at t = 0.4",
+              distance(direct, iterative),
+              0.,
+              1e-7);
+  // The smallest linear_iterations over the steps (the first row is the
+  // initial state, before any solve).
+  const auto iterations = [](const std::string &solver) {
+    const auto column =
+      csv_column(solver + "/statistics.csv", "linear_iterations");
+    double smallest = 1e9;
+    for (unsigned int k = 1; k < column.size(); ++k)
+      smallest = std::min(smallest, column[k]);
+    return smallest;
+  };
+  check_range("Cut linear solver = direct: linear_iterations 0",
+              iterations("direct"),
+              0.,
+              0.);
+  check_range("Cut linear solver = iterative: linear_iterations >= 1 at "
+              "every step",
+              iterations("iterative"),
+              1.,
+              1e4);
 
   const Fidus::RunSummary finer = run("level_6", 2., 6);
   check_range("t = 2: |X(level 5) - X(level 6)| / a",

@@ -94,23 +94,24 @@ namespace Fidus
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
   private:
-    const SparseMatrix<double>      &matrix;
-    const std::vector<unsigned char> kind;
+    const SparseMatrix<double> &matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and
     /// each unknown's index within its kind.
     std::vector<unsigned int> velocity, pressure, rigid, local;
-    SparsityPattern velocity_sparsity, pressure_sparsity, coupling_sparsity;
-    /// A_uu; S; B^T (rows: velocities, then rigid unknowns).
-    SparseMatrix<double>              velocity_matrix, pressure_schur, coupling;
-    TrilinosWrappers::SparseMatrix    velocity_trilinos, pressure_trilinos;
-    TrilinosWrappers::PreconditionAMG velocity_amg, pressure_amg;
+    SparsityPattern velocity_sparsity, pressure_sparsity, coupling_sparsity,
+      rigid_sparsity;
+    /// A_uu; S; B^T (rows: velocities, then rigid unknowns); A_Vu.
+    SparseMatrix<double> velocity_matrix, pressure_schur, coupling,
+      rigid_coupling;
+    TrilinosWrappers::SparseMatrix      velocity_trilinos, pressure_trilinos;
+    TrilinosWrappers::PreconditionAMG   velocity_amg, pressure_amg;
     std::unique_ptr<Epetra_MultiVector> null_space;
     /// W = A_uu^-1 A_uV, one column per rigid unknown, and S_V^-1.
     std::vector<Vector<double>> w;
     FullMatrix<double>          rigid_schur_inverse;
     Statistics                  statistics;
     /// Work vectors of vmult.
-    mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product;
+    mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product, r_v, z_v;
   };
 } // namespace Fidus
 
