@@ -81,9 +81,10 @@ namespace Fidus
         "automatic",
         Patterns::Selection("automatic|direct|iterative"),
         "With 'cut finite element': 'direct' factorises the system (MUMPS); "
-        "'iterative' runs FGMRES with an AMG block preconditioner to the "
+        "'iterative' runs FGMRES with a block preconditioner (a geometric "
+        "multigrid V-cycle for the velocities and rigid motions) to the "
         "relative residual 1e-10; 'automatic' is iterative in 3D above "
-        "100000 unknowns, where the factorisation is slower and takes "
+        "40000 unknowns, where the factorisation is slower and takes "
         "several GB, and direct otherwise (doc/cut_element.md, 'The "
         "iterative solver').");
       prm.declare_entry(

@@ -319,7 +319,7 @@ namespace Fidus
     // mass matrix over the fluid, on the pressures' own pattern.
     const bool iterative = s.linear_solver == LinearSolver::iterative ||
                            (s.linear_solver == LinearSolver::automatic &&
-                            dim == 3 && n_total > 100000);
+                            dim == 3 && n_total > 40000);
     SparsityPattern           mass_sparsity;
     SparseMatrix<double>      pressure_mass;
     std::vector<unsigned int> pressure_shapes;
@@ -698,7 +698,18 @@ namespace Fidus
             for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i);
                  ++it)
               it->value() *= scale[i] * scale[it->column()];
-          CutSaddlePointSolver<dim> solver(matrix, pressure_mass, layout);
+          std::unique_ptr<CutVelocityMultigrid<dim>> multigrid;
+          if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)
+            multigrid = std::make_unique<CutVelocityMultigrid<dim>>(
+              dof_handler,
+              constraints,
+              scale,
+              periodic_axes,
+              typename CutVelocityMultigrid<dim>::Settings());
+          CutSaddlePointSolver<dim> solver(matrix,
+                                           pressure_mass,
+                                           layout,
+                                           multigrid.get());
           const auto                statistics = solver.solve(scaled_solution,
                                                scaled_rhs,
                                                s.iterative_tolerance,

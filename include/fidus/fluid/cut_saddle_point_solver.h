@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_velocity_multigrid.h>
 #include <memory>
 #include <vector>
 
@@ -33,11 +34,14 @@ namespace Fidus
    * (C the pressure's ghost penalty). FGMRES runs on it with the upper
    * block-triangular preconditioner [K B^T; 0 -S]^-1, where S is the
    * pressure mass matrix over the fluid (divided by the viscosity) plus C,
-   * applied with one AMG cycle. K is inverted through its Schur complement
+   * applied with one AMG cycle. K^-1 is, by default, one V-cycle of the
+   * geometric multigrid CutVelocityMultigrid on K, which carries the rigid
+   * unknowns through all its levels. Without it (VelocityPreconditioner::
+   * amg of CutStokesInclusion), K is inverted through its Schur complement
    * on the rigid unknowns: W = A_uu^-1 A_uV is solved for once (one CG
    * solve per rigid unknown) and S_V = A_VV - A_Vu W is a small dense
    * matrix, so the rigid unknowns, which couple to every cut cell of their
-   * particle, never enter the AMG. One AMG cycle on A_uu (with the rigid
+   * particle, never enter the AMG; one ML AMG cycle on A_uu (with the rigid
    * motions as near-null space) stands for A_uu^-1 in each application.
    */
   template <int dim>
@@ -72,11 +76,14 @@ namespace Fidus
     /**
      * Set up for the (scaled) system @p matrix, with the pressure mass
      * matrix @p pressure_mass (same numbering; only its pressure rows are
-     * read). Both must outlive the object.
+     * read). Both must outlive the object. With @p multigrid, one V-cycle
+     * of it stands for A_uu^-1 (it is initialised here); without, one ML
+     * AMG cycle.
      */
     CutSaddlePointSolver(const SparseMatrix<double> &matrix,
                          const SparseMatrix<double> &pressure_mass,
-                         const Layout               &layout);
+                         const Layout               &layout,
+                         CutVelocityMultigrid<dim>  *multigrid = nullptr);
 
     /**
      * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b|| from x = 0.
@@ -93,6 +100,10 @@ namespace Fidus
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
+    /// dst = the approximation of A_uu^-1 src (AMG or multigrid).
+    void
+    apply_velocity(Vector<double> &dst, const Vector<double> &src) const;
+
   private:
     const SparseMatrix<double> &matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and
@@ -105,6 +116,7 @@ namespace Fidus
       rigid_coupling;
     TrilinosWrappers::SparseMatrix      velocity_trilinos, pressure_trilinos;
     TrilinosWrappers::PreconditionAMG   velocity_amg, pressure_amg;
+    CutVelocityMultigrid<dim>          *multigrid;
     std::unique_ptr<Epetra_MultiVector> null_space;
     /// W = A_uu^-1 A_uV, one column per rigid unknown, and S_V^-1.
     std::vector<Vector<double>> w;

@@ -71,14 +71,24 @@ namespace Fidus
     /// How the linear system is solved.
     enum class LinearSolver
     {
-      /// Iterative in 3D above 100 000 unknowns, where the factorisation
-      /// takes more time and several GB (doc/cut_element.md, "The
-      /// iterative solver"); direct otherwise.
+      /// Iterative in 3D above 40 000 unknowns, where the factorisation
+      /// is slower and takes several GB (doc/cut_element.md, "A geometric
+      /// multigrid for the cut element"); direct otherwise.
       automatic,
       /// MUMPS (KLU where it is missing), with iterative refinement.
       direct,
       /// FGMRES with a block preconditioner (CutSaddlePointSolver).
       iterative
+    };
+
+    /// What stands for the inverse of the velocity block in the iterative
+    /// solver.
+    enum class VelocityPreconditioner
+    {
+      /// One ML AMG cycle.
+      amg,
+      /// One V-cycle of the geometric multigrid (CutVelocityMultigrid).
+      multigrid
     };
 
     /// The scene and the discretisation's parameters.
@@ -127,6 +137,9 @@ namespace Fidus
       /// FGMRES iterations after which the iterative solver gives up (and
       /// throws, naming the residual reached).
       unsigned int iterative_max_iterations = 2000;
+      /// The velocity block's preconditioner in the iterative solver.
+      VelocityPreconditioner velocity_preconditioner =
+        VelocityPreconditioner::multigrid;
     };
 
     /// What one solve gives.

@@ -1,0 +1,144 @@
+#ifndef fidus_fluid_cut_velocity_multigrid_h
+#define fidus_fluid_cut_velocity_multigrid_h
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/diagonal_matrix.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+#include <memory>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * Geometric multigrid for the velocity block A_uu of the cut finite
+   * element (CutSaddlePointSolver), for the 3D meshes whose gaps are
+   * refined far below the band, where one ML AMG cycle on the Q2 block
+   * loses its strength (doc/cut_element.md, "A geometric multigrid for
+   * the cut element").
+   *
+   * - **Levels by global coarsening.** The solve's mesh, then the meshes
+   *   obtained by coarsening every cell once, down to the box's single
+   *   cell (MGTransferGlobalCoarseningTools). Every level below the finest
+   *   carries plain Q2 velocities on all its cells, with its own
+   *   hanging-node, periodicity and zero Dirichlet constraints.
+   * - **Prolongation** P_l from level l + 1 to level l interpolates the
+   *   coarse field on the fine cells (the Q2 embedding of each child),
+   *   with the coarse constraints resolved in its columns and the fine
+   *   constrained rows left empty. Into the finest level it only reaches
+   *   the fluid velocities of the system (cut and fluid cells), divided by
+   *   the system's diagonal scaling.
+   * - **Galerkin coarse operators** A_{l+1} = P_l^T A_l P_l. No cut cell,
+   *   Nitsche term or ghost penalty is integrated on a coarse mesh: each
+   *   coarse level is exactly the fine operator on its coarse functions,
+   *   whatever the particles do inside a coarse cell. Coarse unknowns that
+   *   reach no fluid (inside a particle, or constrained) have empty rows
+   *   and get a unit diagonal.
+   * - **Smoothing** by Chebyshev polynomials on the point-Jacobi
+   *   preconditioned operator, before and after the coarse correction (so
+   *   one V-cycle is symmetric and serves CG); the coarsest level is
+   *   factorised.
+   */
+  template <int dim>
+  class CutVelocityMultigrid
+  {
+  public:
+    /// Smoothing of the V-cycle.
+    struct Settings
+    {
+      /// Matrix-vector products per smoothing, before and after.
+      unsigned int smoother_degree = 2;
+      /// Ratio of the largest eigenvalue to the smallest one smoothed.
+      double smoothing_range = 15.;
+    };
+
+    /// Size and cost of the hierarchy.
+    struct Info
+    {
+      /// Unknowns per level, finest first.
+      std::vector<unsigned int> level_unknowns;
+      /// Nonzeros per level, finest first.
+      std::vector<std::size_t> level_nonzeros;
+      /// Wall seconds of initialize(): meshes, transfers, Galerkin products.
+      double setup_seconds = 0.;
+    };
+
+    /**
+     * Keep the system's DoF handler (hp: Taylor-Hood on fluid and cut
+     * cells, nothing inside the particles, velocity components first),
+     * its constraints and its diagonal scaling (the solved unknowns are
+     * x_i / scale[i]); all must outlive the object. @p periodic_axes: the
+     * box axes identified by periodicity.
+     */
+    CutVelocityMultigrid(const DoFHandler<dim>           &system,
+                         const AffineConstraints<double> &constraints,
+                         const Vector<double>            &scale,
+                         const std::vector<unsigned int> &periodic_axes,
+                         const Settings                  &settings);
+
+    /**
+     * Build the hierarchy for the (scaled) block @p matrix, whose row k <
+     * n_u = velocity_unknowns.size() is the system velocity
+     * @p velocity_unknowns[k], and whose @p n_rigid last rows are the
+     * particles' rigid unknowns: those are carried unchanged through every
+     * level, so each coarse level holds them exactly. @p matrix must outlive
+     * the object.
+     */
+    void
+    initialize(const SparseMatrix<double>      &matrix,
+               const std::vector<unsigned int> &velocity_unknowns,
+               const unsigned int               n_rigid = 0);
+
+    /// dst = one V-cycle applied to src (zero initial guess).
+    void
+    vmult(Vector<double> &dst, const Vector<double> &src) const;
+
+    /// Levels, sizes and set-up time.
+    const Info &
+    get_info() const;
+
+  private:
+    using Smoother = PreconditionChebyshev<SparseMatrix<double>,
+                                           Vector<double>,
+                                           DiagonalMatrix<Vector<double>>>;
+
+    /// x = V-cycle on level @p level for the right-hand side @p b.
+    void
+    v_cycle(const unsigned int    level,
+            Vector<double>       &x,
+            const Vector<double> &b) const;
+
+    /// The operator of @p level (the finest is the caller's).
+    const SparseMatrix<double> &
+    level_matrix(const unsigned int level) const;
+
+    const DoFHandler<dim>           &system;
+    const AffineConstraints<double> &system_constraints;
+    const Vector<double>            &scale;
+    const std::vector<unsigned int>  periodic_axes;
+    const Settings                   settings;
+
+    const SparseMatrix<double> *finest = nullptr;
+    /// prolongation[l]: level l + 1 to level l.
+    std::vector<std::unique_ptr<SparsityPattern>>      prolongation_pattern;
+    std::vector<std::unique_ptr<SparseMatrix<double>>> prolongation;
+    /// coarse[l - 1]: the operator of level l >= 1.
+    std::vector<std::unique_ptr<SparsityPattern>>      coarse_pattern;
+    std::vector<std::unique_ptr<SparseMatrix<double>>> coarse;
+    std::vector<std::unique_ptr<Smoother>>             smoother;
+    SparseDirectUMFPACK                                coarsest;
+    Info                                               info;
+    /// Work vectors per level: residual, restricted right-hand side,
+    /// coarse correction.
+    mutable std::vector<Vector<double>> residual, level_rhs, level_solution;
+  };
+} // namespace Fidus
+
+#endif
