@@ -17,6 +17,8 @@
 // - 2D, three discs between sliding walls, one across the periodic face
 //   (the multigrid's coarse levels carry their own periodicity):
 //   velocities, rotations and the walls' stress;
+// - 3D, two spheres between sliding walls, one across the edge of the x-
+//   and z-periodic faces;
 //
 // with FGMRES iterations bounded (the preconditioner works: at most 200 in
 // 3D and 800 in 2D; the 2D cases keep the direct solver by default), and a
@@ -167,6 +169,26 @@ main(int argc, char **argv)
                 iterative.n_iterations,
                 1.,
                 800.);
+  }
+
+  {
+    using Solver = Fidus::CutStokesInclusion<3>;
+    Solver::Settings s;
+    s.boundary     = Solver::Boundary::sliding_walls;
+    s.particles    = {{dealii::Point<3>(0.03, 0.45, 0.97), 0.12, {}},
+                      {dealii::Point<3>(0.5, 0.62, 0.5), 0.12, {}}};
+    s.global_level = 2;
+    s.band_levels  = 1;
+    const auto [direct, iterative] = both<3>(s);
+    check_range("3D sliding walls, a sphere across two periodic faces: "
+                "|omega, U difference| / (g a)",
+                rigid_difference(direct, iterative, 0.12),
+                0.,
+                1e-7);
+    check_range("3D sliding walls: FGMRES iterations",
+                iterative.n_iterations,
+                1.,
+                200.);
   }
 
   {
