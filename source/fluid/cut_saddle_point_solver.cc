@@ -79,7 +79,8 @@ namespace Fidus
       extract(velocity, of_kind(0), n_u, velocity_sparsity, velocity_matrix);
     // B^T, rows numbered velocities first, then rigid unknowns; A_Vu.
     extract(velocity_and_rigid, of_kind(1), n_p, coupling_sparsity, coupling);
-    extract(rigid, of_kind(0), n_u, rigid_sparsity, rigid_coupling);
+    if (!multigrid)
+      extract(rigid, of_kind(0), n_u, rigid_sparsity, rigid_coupling);
 
     // S = M / eta + C on the pressures: the system holds -C in its pressure
     // block. A constrained pressure (the pinned one) keeps its diagonal,
@@ -171,50 +172,53 @@ namespace Fidus
 
     // Without the multigrid: W = A_uu^-1 A_uV column by column (A_uV =
     // A_Vu^T, the system being symmetric), and S_V = A_VV - A_Vu W.
-    struct
-    {
-      const CutSaddlePointSolver *solver;
-      void
-      vmult(Vector<double> &dst, const Vector<double> &src) const
-      {
-        solver->apply_velocity(dst, src);
-      }
-    } velocity_preconditioner{this};
-    w.assign(n_v, Vector<double>(n_u));
-    Vector<double>     column(n_u), product(n_v);
-    FullMatrix<double> schur(n_v, n_v);
-    for (unsigned int k = 0; k < (multigrid ? 0 : n_v); ++k)
-      {
-        column = 0.;
-        for (auto it = rigid_coupling.begin(k); it != rigid_coupling.end(k);
-             ++it)
-          column[it->column()] = it->value();
-        // W only enters the preconditioner: 1e-4 is enough (the FGMRES
-        // iterations are the same as with 1e-10, the setup is three times
-        // shorter).
-        SolverControl            control(1000, 1e-4 * column.l2_norm());
-        SolverCG<Vector<double>> cg(control);
-        try
-          {
-            cg.solve(velocity_matrix, w[k], column, velocity_preconditioner);
-          }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            std::ostringstream message;
-            message << "CutSaddlePointSolver: CG on the velocity block "
-                       "(for the rigid unknowns' Schur complement) did not "
-                       "reach 1e-4 in 1000 iterations (reached "
-                    << e.last_residual / column.l2_norm()
-                    << "); is the Nitsche parameter too small?";
-            throw std::runtime_error(message.str());
-          }
-        statistics.setup_iterations += control.last_step();
-        rigid_coupling.vmult(product, w[k]);
-        for (unsigned int l = 0; l < n_v; ++l)
-          schur(l, k) = matrix.el(rigid[l], rigid[k]) - product[l];
-      }
     if (!multigrid)
       {
+        struct
+        {
+          const CutSaddlePointSolver *solver;
+          void
+          vmult(Vector<double> &dst, const Vector<double> &src) const
+          {
+            solver->apply_velocity(dst, src);
+          }
+        } velocity_preconditioner{this};
+        w.assign(n_v, Vector<double>(n_u));
+        Vector<double>     column(n_u), product(n_v);
+        FullMatrix<double> schur(n_v, n_v);
+        for (unsigned int k = 0; k < n_v; ++k)
+          {
+            column = 0.;
+            for (auto it = rigid_coupling.begin(k); it != rigid_coupling.end(k);
+                 ++it)
+              column[it->column()] = it->value();
+            // W only enters the preconditioner: 1e-4 is enough (the FGMRES
+            // iterations are the same as with 1e-10, the setup is three times
+            // shorter).
+            SolverControl            control(1000, 1e-4 * column.l2_norm());
+            SolverCG<Vector<double>> cg(control);
+            try
+              {
+                cg.solve(velocity_matrix,
+                         w[k],
+                         column,
+                         velocity_preconditioner);
+              }
+            catch (const SolverControl::NoConvergence &e)
+              {
+                std::ostringstream message;
+                message << "CutSaddlePointSolver: CG on the velocity block "
+                           "(for the rigid unknowns' Schur complement) did not "
+                           "reach 1e-4 in 1000 iterations (reached "
+                        << e.last_residual / column.l2_norm()
+                        << "); is the Nitsche parameter too small?";
+                throw std::runtime_error(message.str());
+              }
+            statistics.setup_iterations += control.last_step();
+            rigid_coupling.vmult(product, w[k]);
+            for (unsigned int l = 0; l < n_v; ++l)
+              schur(l, k) = matrix.el(rigid[l], rigid[k]) - product[l];
+          }
         rigid_schur_inverse.reinit(n_v, n_v);
         rigid_schur_inverse.invert(schur);
       }
