@@ -174,15 +174,6 @@ namespace Fidus
     // A_Vu^T, the system being symmetric), and S_V = A_VV - A_Vu W.
     if (!multigrid)
       {
-        struct
-        {
-          const CutSaddlePointSolver *solver;
-          void
-          vmult(Vector<double> &dst, const Vector<double> &src) const
-          {
-            solver->apply_velocity(dst, src);
-          }
-        } velocity_preconditioner{this};
         w.assign(n_v, Vector<double>(n_u));
         Vector<double>     column(n_u), product(n_v);
         FullMatrix<double> schur(n_v, n_v);
@@ -199,10 +190,7 @@ namespace Fidus
             SolverCG<Vector<double>> cg(control);
             try
               {
-                cg.solve(velocity_matrix,
-                         w[k],
-                         column,
-                         velocity_preconditioner);
+                cg.solve(velocity_matrix, w[k], column, velocity_amg);
               }
             catch (const SolverControl::NoConvergence &e)
               {
@@ -266,7 +254,7 @@ namespace Fidus
           dst[pressure[k]] = z_p[k];
         return;
       }
-    apply_velocity(y_u, r_u);
+    velocity_amg.vmult(y_u, r_u);
     rigid_coupling.vmult(r_v, y_u);
     for (unsigned int k = 0; k < rigid.size(); ++k)
       r_v[k] = src[rigid[k]] - coupling_product[n_u + k] - r_v[k];
@@ -279,19 +267,6 @@ namespace Fidus
       dst[rigid[k]] = z_v[k];
     for (unsigned int k = 0; k < pressure.size(); ++k)
       dst[pressure[k]] = z_p[k];
-  }
-
-
-
-  template <int dim>
-  void
-  CutSaddlePointSolver<dim>::apply_velocity(Vector<double>       &dst,
-                                            const Vector<double> &src) const
-  {
-    if (multigrid)
-      multigrid->vmult(dst, src);
-    else
-      velocity_amg.vmult(dst, src);
   }
 
 

@@ -2,7 +2,6 @@
 #include <cmath>
 #include <deal.II/base/function.h>
 #include <deal.II/base/geometry_info.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
@@ -169,14 +168,12 @@ namespace Fidus
     const std::vector<unsigned int> &velocity_unknowns,
     const unsigned int               n_rigid)
   {
-    Timer timer;
     finest = &matrix;
     prolongation_pattern.clear();
     prolongation.clear();
     coarse_pattern.clear();
     coarse.clear();
     smoother.clear();
-    info = Info();
 
     // Coarsest first; the last one is the solve's mesh.
     const auto meshes =
@@ -265,11 +262,6 @@ namespace Fidus
             coarse.back()->diag_element(i) = 1.;
       }
 
-    for (unsigned int l = 0; l < n_levels; ++l)
-      {
-        info.level_unknowns.push_back(level_matrix(l).m());
-        info.level_nonzeros.push_back(level_matrix(l).n_nonzero_elements());
-      }
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
       {
         const SparseMatrix<double>       &a = level_matrix(l);
@@ -300,7 +292,6 @@ namespace Fidus
         level_rhs[l].reinit(level_matrix(l).m());
         level_solution[l].reinit(level_matrix(l).m());
       }
-    info.setup_seconds = timer.wall_time();
   }
 
 
@@ -346,13 +337,6 @@ namespace Fidus
   }
 
 
-
-  template <int dim>
-  const typename CutVelocityMultigrid<dim>::Info &
-  CutVelocityMultigrid<dim>::get_info() const
-  {
-    return info;
-  }
 
   template class CutVelocityMultigrid<2>;
   template class CutVelocityMultigrid<3>;

@@ -100,10 +100,6 @@ namespace Fidus
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
-    /// dst = the approximation of A_uu^-1 src (AMG or multigrid).
-    void
-    apply_velocity(Vector<double> &dst, const Vector<double> &src) const;
-
   private:
     const SparseMatrix<double> &matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and

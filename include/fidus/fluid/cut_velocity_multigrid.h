@@ -59,17 +59,6 @@ namespace Fidus
       double smoothing_range = 15.;
     };
 
-    /// Size and cost of the hierarchy.
-    struct Info
-    {
-      /// Unknowns per level, finest first.
-      std::vector<unsigned int> level_unknowns;
-      /// Nonzeros per level, finest first.
-      std::vector<std::size_t> level_nonzeros;
-      /// Wall seconds of initialize(): meshes, transfers, Galerkin products.
-      double setup_seconds = 0.;
-    };
-
     /**
      * Keep the system's DoF handler (hp: Taylor-Hood on fluid and cut
      * cells, nothing inside the particles, velocity components first),
@@ -99,10 +88,6 @@ namespace Fidus
     /// dst = one V-cycle applied to src (zero initial guess).
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
-
-    /// Levels, sizes and set-up time.
-    const Info &
-    get_info() const;
 
   private:
     using Smoother = PreconditionChebyshev<SparseMatrix<double>,
@@ -134,7 +119,6 @@ namespace Fidus
     std::vector<std::unique_ptr<SparseMatrix<double>>> coarse;
     std::vector<std::unique_ptr<Smoother>>             smoother;
     SparseDirectUMFPACK                                coarsest;
-    Info                                               info;
     /// Work vectors per level: residual, restricted right-hand side,
     /// coarse correction.
     mutable std::vector<Vector<double>> residual, level_rhs, level_solution;
