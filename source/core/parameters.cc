@@ -576,6 +576,8 @@ namespace Fidus
       adaptive_time_step     = prm.get_bool("Adaptive time step");
       cfl_number             = prm.get_double("CFL number");
       maximum_time_step      = prm.get_double("Maximum time step");
+      gap_step_fraction      = prm.get_double("Gap step fraction");
+      gap_step_floor         = prm.get_double("Gap step floor");
       time_scheme            = prm.get("Scheme") == "trapezoidal" ?
                                  TimeScheme::trapezoidal :
                                  TimeScheme::ab2;

@@ -578,6 +578,31 @@ namespace Fidus
                         Patterns::Double(0.),
                         "Upper bound of the adaptive time step [time], > 0.");
       prm.declare_entry(
+        "Gap step fraction",
+        "0",
+        Patterns::Double(0., 1.),
+        "0 to 1. Above 0, the step (the fixed Time step, or the adaptive "
+        "one) is cut wherever a closing gap D_ij would shrink by more than "
+        "this fraction of itself: dt <= f D_ij / v_ij, with v_ij the speed "
+        "at which the pair (or particle and wall) approaches, taken from the "
+        "velocities at the start of the step. The approach to contact is "
+        "then followed in steps that shrink with the gap, so the flow, not "
+        "the step, sets the closest approach; after it the step grows back, "
+        "at most doubling per step (AB2 extrapolates with the ratio of "
+        "successive steps). 0 (default): gaps do not limit the step. 0.2 to "
+        "0.5 resolves the closest approach of a sheared pair "
+        "(doc/results.md, \"A step that follows the gaps\").");
+      prm.declare_entry(
+        "Gap step floor",
+        "1e-3",
+        Patterns::Double(0.),
+        "Gaps below this fraction of the smaller radius (the particle's own "
+        "for a wall) do not limit the step, >= 0: they belong to the contact "
+        "model, which holds a glued pair at a zero gap while the fluid still "
+        "closes it. Set it near Contact/Roughness with the lubrication "
+        "correction, and near Fluid/Cut minimum gap with the cut finite "
+        "element.");
+      prm.declare_entry(
         "Scheme",
         "AB2",
         Patterns::Selection("AB2|trapezoidal"),

@@ -125,6 +125,12 @@ namespace Fidus
   {
     projector.set_walls(box.walls);
     projector.set_periodicity(box.periods);
+    if (parameters.gap_step_fraction > 0.)
+      gap_step = std::make_unique<GapTimeStep>(parameters.gap_step_fraction,
+                                               parameters.gap_step_floor,
+                                               dim,
+                                               box.walls,
+                                               box.periods);
     // A contact correction u - u* is a velocity; the force that gives it to
     // an isolated particle is its Stokes drag (doc/rheology.md).
     double mean_radius = 0.;
@@ -439,6 +445,17 @@ namespace Fidus
         dt             = umax > 0 ?
                            std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
                            prm.maximum_time_step;
+      }
+    if (gap_step)
+      {
+        dt = gap_step
+               ->limit(state.X, prm.radii, state.U, dt, &projector.glue_state())
+               .dt;
+        // AB2 extrapolates with dt / (2 dt_old): a step that more than
+        // doubles after a closest approach would weigh the old velocities
+        // by more than one and amplify their difference.
+        if (state.have_history)
+          dt = std::min(dt, 2. * state.dt_old);
       }
     // The last step ends at the End time. A remainder that differs from
     // the step only by round-off (an End time that is a multiple of a fixed

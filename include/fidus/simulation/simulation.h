@@ -23,6 +23,7 @@
 #include <fidus/rheology/suspension_stress.h>
 #include <fidus/simulation/box_geometry.h>
 #include <fidus/simulation/checkpoint.h>
+#include <fidus/simulation/gap_time_step.h>
 #include <fidus/simulation/run_state.h>
 #include <memory>
 #include <string>
@@ -132,7 +133,8 @@ namespace Fidus
     /// Whether the End time is reached.
     bool
     finished() const;
-    /// Fixed, or CFL-limited by the fastest particle (numerics section 5).
+    /// Fixed, or CFL-limited by the fastest particle (numerics section 5);
+    /// then cut to the closing gaps (Time stepping/Gap step fraction).
     double
     choose_time_step() const;
     /// AB2 extrapolation of U / shear rate to the middle of the step.
@@ -243,8 +245,10 @@ namespace Fidus
     /// uses the particles' radii.
     std::vector<double> solid_radii;
 
-    Contact::Settings                               contact_settings;
-    Contact::ContactProjector                       projector;
+    Contact::Settings         contact_settings;
+    Contact::ContactProjector projector;
+    /// The gap limit of the step (null: Gap step fraction 0).
+    std::unique_ptr<GapTimeStep>                    gap_step;
     std::unique_ptr<Contact::LubricationCorrection> lubrication;
 
     std::unique_ptr<dealii::parallel::distributed::Triangulation<dim>> tria;

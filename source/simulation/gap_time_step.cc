@@ -1,0 +1,122 @@
+#include <algorithm>
+#include <cmath>
+#include <fidus/contact/pair_search.h>
+#include <fidus/simulation/gap_time_step.h>
+#include <stdexcept>
+#include <string>
+
+namespace Fidus
+{
+  GapTimeStep::GapTimeStep(const double                      fraction,
+                           const double                      floor,
+                           const unsigned int                dimension,
+                           const std::vector<Contact::Wall> &walls,
+                           const std::array<double, 3>      &periods)
+    : fraction(fraction)
+    , floor(floor)
+    , dimension(dimension)
+    , walls(walls)
+    , periods(periods)
+  {
+    if (!(fraction > 0. && fraction <= 1.))
+      throw std::invalid_argument("GapTimeStep: the fraction " +
+                                  std::to_string(fraction) +
+                                  " is not in (0, 1]");
+    if (!(floor >= 0.))
+      throw std::invalid_argument("GapTimeStep: the floor " +
+                                  std::to_string(floor) + " is negative");
+  }
+
+
+
+  GapTimeStep::Limit
+  GapTimeStep::limit(const std::vector<Vec3>   &positions,
+                     const std::vector<double> &radii,
+                     const std::vector<Vec3>   &velocities,
+                     const double               upper,
+                     const Contact::GlueState  *glue) const
+  {
+    Limit result;
+    result.dt = upper;
+
+    double u_max = 0.;
+    for (const Vec3 &u : velocities)
+      {
+        double u2 = 0.;
+        for (unsigned int d = 0; d < dimension; ++d)
+          u2 += u[d] * u[d];
+        u_max = std::max(u_max, std::sqrt(u2));
+      }
+    if (u_max == 0.)
+      return result;
+
+    const auto glued = [&](const std::uint32_t first,
+                           const std::uint32_t second) {
+      if (glue == nullptr)
+        return false;
+      const long k = glue->find(first, second);
+      return k >= 0 && glue->entries()[k].gamma < 0.;
+    };
+    const auto consider = [&](const double gap,
+                              const double closing,
+                              const double a,
+                              const int    i,
+                              const int    j) {
+      if (closing <= 0. || gap < floor * a ||
+          glued(i,
+                j >= 0 ? std::uint32_t(j) :
+                         Contact::GlueState::wall_key(-1 - j)))
+        return;
+      const double dt = fraction * gap / closing;
+      if (dt < result.dt)
+        {
+          result.dt            = dt;
+          result.limited       = true;
+          result.i             = i;
+          result.j             = j;
+          result.gap           = gap;
+          result.closing_speed = closing;
+        }
+    };
+
+    // A pair closes at most at 2 u_max, so only gaps below
+    // 2 u_max upper / f can limit the step below the upper bound.
+    const double        reach = 2. * u_max * upper / fraction;
+    Contact::PairSearch search(dimension, Contact::PairSearchMethod::cell_list);
+    search.set_periodicity(periods);
+    std::vector<Contact::PairSearch::Pair> pairs;
+    search.find_pairs(positions, radii, reach, pairs);
+    for (const auto &p : pairs)
+      {
+        const Vec3 dx =
+          search.separation(positions[p.first], positions[p.second]);
+        double r2 = 0., rate = 0.;
+        for (unsigned int d = 0; d < dimension; ++d)
+          {
+            r2 += dx[d] * dx[d];
+            rate += dx[d] * (velocities[p.second][d] - velocities[p.first][d]);
+          }
+        const double r = std::sqrt(r2);
+        if (r == 0.)
+          continue;
+        consider(r - radii[p.first] - radii[p.second],
+                 -rate / r,
+                 std::min(radii[p.first], radii[p.second]),
+                 p.first,
+                 p.second);
+      }
+
+    for (unsigned int w = 0; w < walls.size(); ++w)
+      {
+        const Contact::Wall &wall = walls[w];
+        for (unsigned int i = 0; i < positions.size(); ++i)
+          consider(wall.side * (positions[i][wall.axis] - wall.position) -
+                     radii[i],
+                   -wall.side * velocities[i][wall.axis],
+                   radii[i],
+                   i,
+                   -1 - int(w));
+      }
+    return result;
+  }
+} // namespace Fidus
