@@ -582,15 +582,17 @@ namespace Fidus
         "0",
         Patterns::Double(0., 1.),
         "0 to 1. Above 0, the step (the fixed Time step, or the adaptive "
-        "one) is cut wherever a closing gap D_ij would shrink by more than "
-        "this fraction of itself: dt <= f D_ij / v_ij, with v_ij the speed "
-        "at which the pair (or particle and wall) approaches, taken from the "
-        "velocities at the start of the step. The approach to contact is "
-        "then followed in steps that shrink with the gap, so the flow, not "
-        "the step, sets the closest approach; after it the step grows back, "
-        "at most doubling per step (AB2 extrapolates with the ratio of "
-        "successive steps). 0 (default): gaps do not limit the step. 0.2 to "
-        "0.5 resolves the closest approach of a sheared pair "
+        "one) is cut wherever it would change a gap D_ij by more than this "
+        "fraction f of itself, with the velocities at the start of the "
+        "step: by closing it (dt <= f D_ij / v_ij, v_ij the speed of "
+        "approach of the pair, or of particle and wall), or by the chord "
+        "error of a straight step of a pair sliding past each other at "
+        "w_ij (dt <= (2 r_ij f D_ij)^(1/2) / w_ij, r_ij the distance of the "
+        "centres). The approach to contact and a tumbling pair are then "
+        "followed in steps that shrink with the gap, so the flow, not the "
+        "step, sets the gaps; afterwards the step grows back, at most "
+        "doubling per step (AB2 extrapolates with the ratio of successive "
+        "steps). 0 (default): gaps do not limit the step "
         "(doc/results.md, \"A step that follows the gaps\").");
       prm.declare_entry(
         "Gap step floor",

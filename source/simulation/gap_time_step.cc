@@ -2,6 +2,7 @@
 #include <cmath>
 #include <fidus/contact/pair_search.h>
 #include <fidus/simulation/gap_time_step.h>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -59,15 +60,23 @@ namespace Fidus
     };
     const auto consider = [&](const double gap,
                               const double closing,
+                              const double sliding,
+                              const double distance,
                               const double a,
                               const int    i,
                               const int    j) {
-      if (closing <= 0. || gap < floor * a ||
+      if (gap < floor * a ||
           glued(i,
                 j >= 0 ? std::uint32_t(j) :
                          Contact::GlueState::wall_key(-1 - j)))
         return;
-      const double dt = fraction * gap / closing;
+      double dt = std::numeric_limits<double>::infinity();
+      if (closing > 0.)
+        dt = fraction * gap / closing;
+      // A straight step of a pair sliding past each other at v_t moves
+      // the centres apart by the chord error (v_t dt)^2 / (2 r).
+      if (sliding > 0. && distance > 0.)
+        dt = std::min(dt, std::sqrt(2. * distance * fraction * gap) / sliding);
       if (dt < result.dt)
         {
           result.dt            = dt;
@@ -76,6 +85,7 @@ namespace Fidus
           result.j             = j;
           result.gap           = gap;
           result.closing_speed = closing;
+          result.sliding_speed = sliding;
         }
     };
 
@@ -90,17 +100,22 @@ namespace Fidus
       {
         const Vec3 dx =
           search.separation(positions[p.first], positions[p.second]);
-        double r2 = 0., rate = 0.;
+        double r2 = 0., rate = 0., v2 = 0.;
         for (unsigned int d = 0; d < dimension; ++d)
           {
+            const double dv = velocities[p.second][d] - velocities[p.first][d];
             r2 += dx[d] * dx[d];
-            rate += dx[d] * (velocities[p.second][d] - velocities[p.first][d]);
+            rate += dx[d] * dv;
+            v2 += dv * dv;
           }
         const double r = std::sqrt(r2);
         if (r == 0.)
           continue;
+        const double normal = rate / r;
         consider(r - radii[p.first] - radii[p.second],
-                 -rate / r,
+                 -normal,
+                 std::sqrt(std::max(0., v2 - normal * normal)),
+                 r,
                  std::min(radii[p.first], radii[p.second]),
                  p.first,
                  p.second);
@@ -113,6 +128,8 @@ namespace Fidus
           consider(wall.side * (positions[i][wall.axis] - wall.position) -
                      radii[i],
                    -wall.side * velocities[i][wall.axis],
+                   0.,
+                   0.,
                    radii[i],
                    i,
                    -1 - int(w));

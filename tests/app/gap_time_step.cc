@@ -3,8 +3,9 @@
 //
 // First GapTimeStep alone, on configurations whose limit is known in
 // closed form: dt = f D / v for a head-on pair, a pair across a periodic
-// face and a particle approaching a wall; no limit for separating pairs
-// and for gaps below the floor.
+// face and a particle approaching a wall; the chord limit
+// (2 r f D)^(1/2) / w for a sliding pair; no limit for separating pairs,
+// slow slides and gaps below the floor.
 //
 // Then the whole program ('undisturbed shear', gluey, a pair at
 // cross-stream offset 0.04 closing from a gap of 0.2, fixed step 0.05):
@@ -58,12 +59,23 @@ namespace
                   s.dt * (s.limited ? -1 : 1),
                   1.,
                   1.);
-      // A sliding pair (relative velocity normal to the line of centres).
+      // A sliding pair (relative velocity 0.2 normal to the line of
+      // centres, r = 0.2): the chord limit (2 r f D)^(1/2) / w
+      // = 0.02^(1/2) / 0.2.
       const auto t = step.limit({{{0.4, 0.5, 0.}}, {{0.6, 0.5, 0.}}},
                                 {0.05, 0.05},
                                 {{{0., 0.1, 0.}}, {{0., -0.1, 0.}}},
                                 1.);
-      check_range("sliding pair: dt = upper bound", t.dt, 1., 1.);
+      check_range("sliding pair: dt / chord limit",
+                  t.dt / (std::sqrt(0.02) / 0.2),
+                  1 - 1e-12,
+                  1 + 1e-12);
+      // Slow enough that the upper bound holds.
+      const auto u = step.limit({{{0.4, 0.5, 0.}}, {{0.6, 0.5, 0.}}},
+                                {0.05, 0.05},
+                                {{{0., 0.01, 0.}}, {{0., -0.01, 0.}}},
+                                1.);
+      check_range("slowly sliding pair: dt = upper bound", u.dt, 1., 1.);
     }
     // 3D, oblique: centres 0.3 apart along (1, 1, 1)/sqrt(3), a = 0.1 and
     // 0.05 (gap 0.15), sphere 1 at rest, sphere 0 moving at (0.3, 0, 0):

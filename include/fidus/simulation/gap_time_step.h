@@ -25,8 +25,18 @@ namespace Fidus
    *
    * follows the approach with a number of steps that grows only with the
    * logarithm of the smallest gap. Particle-wall gaps are treated the same
-   * way (the wall's normal velocity is zero). Separating pairs do not
-   * limit the step.
+   * way (the wall's normal velocity is zero).
+   *
+   * A pair that rolls or slides past each other at a small gap, at the
+   * tangential relative speed w_ij, is moved along straight lines by a
+   * step, which opens the distance of the centres r_ij by the chord error
+   * (w_ij dt)^2 / (2 r_ij). Limiting that to f D_ij as well,
+   *
+   *   dt <= (2 r_ij f D_ij)^(1/2) / w_ij,
+   *
+   * keeps the step from setting the gap of a tumbling pair (a wall's gap
+   * does not change when a particle slides along it). So no step changes
+   * a gap by more than about f of itself.
    *
    * Gaps the contact model holds are left to it: glued pairs (their gap
    * drifts a little above zero as they turn, while their fluid velocities
@@ -51,9 +61,9 @@ namespace Fidus
       /// Whether a gap set the step (else dt is the upper bound).
       bool limited = false;
       /// The limiting gap: particles i and j (j = -1 - w for wall w), its
-      /// size D and closing speed v.
+      /// size D, closing speed v and tangential (sliding) speed w.
       int    i = -1, j = -1;
-      double gap = 0., closing_speed = 0.;
+      double gap = 0., closing_speed = 0., sliding_speed = 0.;
     };
 
     /**
