@@ -19,9 +19,8 @@ namespace Fidus
     namespace fs = std::filesystem;
 
     const std::string magic = "fidus checkpoint";
-    // Raised whenever the layout of state.bin changes. Format 1 (before
-    // RunState::U_moved) is still read.
-    constexpr std::uint32_t format_version = 2;
+    // Raised whenever the layout of state.bin changes.
+    constexpr std::uint32_t format_version = 1;
 
     const char *const boundary_names[] = {"linear shear",
                                           "sliding walls",
@@ -249,9 +248,9 @@ namespace Fidus
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' is not a fidus checkpoint");
     const auto version = a.get<std::uint32_t>();
-    if (version != format_version && version != 1)
+    if (version != format_version)
       throw InputError("--resume: '" + r.folder + "/state.bin' has format " +
-                       std::to_string(version) + "; allowed: format 1 to " +
+                       std::to_string(version) + "; allowed: format " +
                        std::to_string(format_version) +
                        " (written by another version of fidus)");
     const auto dimension = a.get<std::uint32_t>();
@@ -334,7 +333,7 @@ namespace Fidus
             "completely by fidus (remove this checkpoint folder to start "
             "the run anew)");
       }
-    r.state.load(a, version);
+    r.state.load(a);
     if (!a.at_end())
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' holds more than a checkpoint (damaged)");

@@ -48,13 +48,12 @@ namespace Fidus
       }
     a.put(totals);
     a.put(wall_seconds_before);
-    a.put(U_moved);
   }
 
 
 
   void
-  RunState::load(ArchiveReader &a, const unsigned int format)
+  RunState::load(ArchiveReader &a)
   {
     step             = a.get<unsigned int>();
     time             = a.get<double>();
@@ -81,8 +80,5 @@ namespace Fidus
       }
     totals              = a.get<RunTotals>();
     wall_seconds_before = a.get<double>();
-    U_moved.clear();
-    if (format >= 2)
-      U_moved = a.get_vector<Vec3>();
   }
 } // namespace Fidus

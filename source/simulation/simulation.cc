@@ -448,17 +448,8 @@ namespace Fidus
       }
     if (gap_step)
       {
-        // The fluid's U does not contain the sub-grid lubrication, which
-        // slows the approach below the mesh scale: with the correction on,
-        // the velocities that moved the particles in the last step say how
-        // fast the gaps close.
-        const bool moved = lubrication && state.U_moved.size() == n;
-        dt               = gap_step
-               ->limit(state.X,
-                       prm.radii,
-                       moved ? state.U_moved : state.U,
-                       dt,
-                       &projector.glue_state())
+        dt = gap_step
+               ->limit(state.X, prm.radii, state.U, dt, &projector.glue_state())
                .dt;
         // AB2 extrapolates with dt / (2 dt_old): a step that more than
         // doubles after a closest approach would weigh the old velocities
@@ -700,10 +691,6 @@ namespace Fidus
               q[k] /= std::sqrt(norm);
           }
       }
-    s.U_moved.assign(n, RunState::Vec3{});
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        s.U_moved[i][d] = u_corrected[i][d];
     X_mid.clear();
     s.U_old        = s.U;
     s.W_old        = s.W;

@@ -63,7 +63,6 @@ main(int argc, char **argv)
   a.totals.min_gap                   = -3.5e-11;
   a.totals.uzawa_failures            = 12;
   a.wall_seconds_before              = 123.5;
-  a.U_moved = {{{0.25, -1e-17, 0.}}, {{0., 0., 0.}}, {{7., 8., 9.}}};
 
   Fidus::ArchiveWriter w;
   a.save(w);
@@ -85,7 +84,7 @@ main(int argc, char **argv)
     b.warnings.at("rigidity not reached").count == 12 &&
     b.warnings.at("rigidity not reached").worst_step == 9 &&
     b.totals.min_gap == a.totals.min_gap && b.totals.uzawa_failures == 12 &&
-    b.wall_seconds_before == a.wall_seconds_before && b.U_moved == a.U_moved;
+    b.wall_seconds_before == a.wall_seconds_before;
   check_range("every field read back to the bit", same ? 1 : 0, 1, 1);
 
   check_range("truncated archive refused",

@@ -82,23 +82,15 @@ namespace Fidus
     /// resumed run), so that statistics.csv keeps a cumulative clock.
     double wall_seconds_before = 0.;
 
-    /// The velocities that moved the particles in the last step, after
-    /// the lubrication correction and the contact projection (empty
-    /// before the first step). With the lubrication correction they, not
-    /// the fluid's U, say how fast a gap below the mesh closes: the gap
-    /// step uses them (Time stepping/Gap step fraction).
-    std::vector<Vec3> U_moved;
-
     /// Initial state: @p positions, everything else zero.
     void
     initialise(const std::vector<Vec3> &positions);
 
-    /// Append to / read from a checkpoint archive (same order). An archive
-    /// of @p format 1 has no U_moved (it stays empty).
+    /// Append to / read from a checkpoint archive (same order).
     void
     save(ArchiveWriter &archive) const;
     void
-    load(ArchiveReader &archive, unsigned int format = 2);
+    load(ArchiveReader &archive);
   };
 } // namespace Fidus
 
