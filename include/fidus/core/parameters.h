@@ -202,13 +202,14 @@ namespace Fidus
     bool         adaptive_time_step     = false;
     double       cfl_number             = 0.5;
     double       maximum_time_step      = 0.05;
-    /// Gap step fraction: the largest part of a gap one step may close (0:
+    TimeScheme   time_scheme            = TimeScheme::ab2;
+    unsigned int trapezoidal_iterations = 1;
+
+    /// Gap step fraction: the largest part of a gap one step may change (0:
     /// the step is not limited by gaps); Gap step floor: gaps below it
     /// times the smaller radius are left to the contact model.
     double gap_step_fraction = 0.;
     double gap_step_floor    = 1e-3;
-    TimeScheme   time_scheme            = TimeScheme::ab2;
-    unsigned int trapezoidal_iterations = 1;
 
     // Mesh refinement
     unsigned int initial_global_refinement = 3;
