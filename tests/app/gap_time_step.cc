@@ -23,7 +23,6 @@
 #include <fidus/core/parameters.h>
 #include <fidus/simulation/gap_time_step.h>
 #include <fidus/simulation/simulation.h>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -181,22 +180,10 @@ namespace
   Steps
   read_steps(const std::string &dir)
   {
-    Steps         s;
-    std::ifstream in(dir + "/statistics.csv");
-    std::string   line;
-    std::getline(in, line);
-    while (std::getline(in, line))
-      {
-        std::vector<double> v;
-        std::stringstream   items(line);
-        std::string         item;
-        while (std::getline(items, item, ','))
-          v.push_back(std::stod(item));
-        s.dt.push_back(v[2]);
-        s.gap.push_back(v[8]);
-        s.glued.push_back(v[10]);
-      }
-    return s;
+    const std::string csv = dir + "/statistics.csv";
+    return {csv_column(csv, "dt"),
+            csv_column(csv, "min_gap"),
+            csv_column(csv, "glued_contacts")};
   }
 
 
