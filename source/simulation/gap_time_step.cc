@@ -17,8 +17,9 @@ namespace Fidus
     , floor(floor)
     , dimension(dimension)
     , walls(walls)
-    , periods(periods)
+    , search(dimension, Contact::PairSearchMethod::cell_list)
   {
+    search.set_periodicity(periods);
     if (!(fraction > 0. && fraction <= 1.))
       throw std::invalid_argument("GapTimeStep: the fraction " +
                                   std::to_string(fraction) +
@@ -91,10 +92,7 @@ namespace Fidus
 
     // A pair closes at most at 2 u_max, so only gaps below
     // 2 u_max upper / f can limit the step below the upper bound.
-    const double        reach = 2. * u_max * upper / fraction;
-    Contact::PairSearch search(dimension, Contact::PairSearchMethod::cell_list);
-    search.set_periodicity(periods);
-    std::vector<Contact::PairSearch::Pair> pairs;
+    const double reach = 2. * u_max * upper / fraction;
     search.find_pairs(positions, radii, reach, pairs);
     for (const auto &p : pairs)
       {

@@ -4,6 +4,7 @@
 #include <array>
 #include <fidus/contact/contact_types.h>
 #include <fidus/contact/glue_state.h>
+#include <fidus/contact/pair_search.h>
 #include <vector>
 
 namespace Fidus
@@ -98,7 +99,10 @@ namespace Fidus
     double                     fraction, floor;
     unsigned int               dimension;
     std::vector<Contact::Wall> walls;
-    std::array<double, 3>      periods;
+    /// The cell list (with the periods) and its pairs, kept between steps
+    /// so that the time loop does not reallocate their work arrays.
+    mutable Contact::PairSearch                    search;
+    mutable std::vector<Contact::PairSearch::Pair> pairs;
   };
 } // namespace Fidus
 
