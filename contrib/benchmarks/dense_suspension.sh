@@ -19,7 +19,8 @@
 # iterations, Fluid/Shared cells and Fluid/Reuse multiplier;
 # INEXACT=<factor> (default 0) sets Fluid/Linear solver/Inexact Uzawa
 # factor; LUBRICATION=true|false (default false) sets Fluid/Lubrication
-# correction.
+# correction; METHOD=auto|iterative|direct (default auto, fidus's) sets
+# Fluid/Linear solver/Method.
 # Long runs: WORK=<dir> works in <dir> (kept) instead of a temporary folder,
 # CHECKPOINT=<steps> writes a checkpoint every <steps> steps (and on
 # SIGTERM/SIGINT), and RESUME=1 with the same WORK continues the run there
@@ -74,6 +75,7 @@ subsection Fluid
   set Lubrication correction = ${LUBRICATION:-false}
   subsection Linear solver
     set Inexact Uzawa factor = ${INEXACT:-0}
+    set Method = ${METHOD:-auto}
   end
 end
 subsection Particles

@@ -312,6 +312,10 @@ namespace Fidus
       // auto: the faster one per dimension as measured
       // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
       // the GMG does not have.
+      // auto: direct in 2D (doc/fluid.md, "A direct solver for 2D").
+      const std::string method = prm.get("Method");
+      direct_stokes_solver =
+        method == "direct" || (method == "auto" && dim == 2);
       const std::string preconditioner = prm.get("Preconditioner");
       geometric_multigrid =
         preconditioner == "GMG" ||

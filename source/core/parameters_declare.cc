@@ -341,6 +341,17 @@ namespace Fidus
           "across ranks, it is expected to weaken on many ranks (not "
           "measured; doc/fluid.md, doc/performance.md).");
         prm.declare_entry(
+          "Method",
+          "auto",
+          Patterns::Selection("auto|iterative|direct"),
+          "How the fictitious domain's Stokes system is solved: 'iterative' "
+          "runs FGMRES with the block preconditioner set below; 'direct' "
+          "factorises it once per time step (MUMPS, or KLU where Trilinos "
+          "has no MUMPS), so that each Uzawa iteration is one substitution; "
+          "'auto': direct in 2D, iterative in 3D, where the factorisation "
+          "grows too fast with the mesh (measured in doc/fluid.md, 'A "
+          "direct solver for 2D').");
+        prm.declare_entry(
           "Preconditioner",
           "auto",
           Patterns::Selection("auto|AMG|GMG"),

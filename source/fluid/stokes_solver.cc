@@ -145,7 +145,8 @@ namespace Fidus
 
     // The multigrid hierarchy first: whether it can be built on this mesh
     // decides whether the system holds an assembled velocity block.
-    multigrid_active = settings.geometric_multigrid;
+    multigrid_active = settings.geometric_multigrid && !settings.direct_solver;
+    direct.reset();
     if (multigrid_active)
       {
         typename VelocityMultigrid<dim>::Settings mg;
@@ -189,6 +190,19 @@ namespace Fidus
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
     make_constraints(Functions::ZeroFunction<dim>(dim + 1));
+    // The direct solver's pinned pressure: the lowest unconstrained one
+    // (hanging and periodic pressures are constrained), the same on every
+    // rank.
+    {
+      types::global_dof_index first = numbers::invalid_dof_index;
+      for (const auto i : owned_partitioning[1])
+        if (!constraints.is_constrained(n_u + i))
+          {
+            first = i;
+            break;
+          }
+      pinned_pressure = Utilities::MPI::min(first, mpi_communicator);
+    }
     conforming_constraints.clear();
     conforming_constraints.reinit(locally_relevant_dofs);
     add_conforming_constraints(conforming_constraints);

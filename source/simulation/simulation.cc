@@ -210,6 +210,7 @@ namespace Fidus
     ss.amg_aggregation_threshold  = prm.amg_aggregation_threshold;
     ss.amg_smoother_sweeps        = prm.amg_smoother_sweeps;
     ss.amg_smoother_type          = prm.amg_smoother_type;
+    ss.direct_solver              = prm.direct_stokes_solver;
     ss.geometric_multigrid        = prm.geometric_multigrid;
     ss.mg_smoother_degree         = prm.mg_smoother_degree;
     ss.mg_viscosity_averaging     = prm.mg_viscosity_averaging;

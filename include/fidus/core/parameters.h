@@ -159,14 +159,16 @@ namespace Fidus
     double lubrication_tangential_range      = 2.;
     double lubrication_wall_tangential_range = 1.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
-    bool         lubrication_tangential     = true;
-    double       linear_tolerance           = 1e-6;
-    double       inexact_uzawa_factor       = 0.;
-    unsigned int max_cheap_iterations       = 1000;
-    unsigned int max_linear_iterations      = 1000;
-    double       amg_aggregation_threshold  = 0.;
-    unsigned int amg_smoother_sweeps        = 4;
-    std::string  amg_smoother_type          = "Chebyshev";
+    bool         lubrication_tangential    = true;
+    double       linear_tolerance          = 1e-6;
+    double       inexact_uzawa_factor      = 0.;
+    unsigned int max_cheap_iterations      = 1000;
+    unsigned int max_linear_iterations     = 1000;
+    double       amg_aggregation_threshold = 0.;
+    unsigned int amg_smoother_sweeps       = 4;
+    std::string  amg_smoother_type         = "Chebyshev";
+    /// Fluid/Linear solver/Method, resolved: a direct factorisation.
+    bool         direct_stokes_solver       = false;
     bool         geometric_multigrid        = false;
     unsigned int mg_smoother_degree         = 4;
     std::string  mg_viscosity_averaging     = "none";

@@ -11,6 +11,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <fidus/fluid/direct_stokes_solver.h>
 #include <fidus/fluid/uzawa_loop.h>
 #include <fidus/fluid/velocity_block.h>
 #include <fidus/particles/rigid_motion.h>
@@ -81,6 +82,9 @@ namespace Fidus
       std::string  amg_smoother_type         = "Chebyshev";
       /// Velocity-block preconditioner: geometric multigrid (true) or the
       /// ML AMG.
+      /// Factorise the system once per solve (DirectStokesSolver) instead
+      /// of FGMRES; the preconditioner settings are then unused.
+      bool         direct_solver          = false;
       bool         geometric_multigrid    = false;
       unsigned int mg_smoother_degree     = 4;
       std::string  mg_viscosity_averaging = "galerkin";
@@ -446,6 +450,11 @@ namespace Fidus
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
+    /// With Settings::direct_solver: the factorised system of this solve.
+    std::unique_ptr<DirectStokesSolver> direct;
+    /// The pressure unknown (within the pressure block) that the direct
+    /// solver fixes at zero: the pressure is defined up to a constant.
+    types::global_dof_index pinned_pressure = numbers::invalid_dof_index;
     /// Products with the velocity block (assembled or matrix-free), set
     /// with the preconditioners.
     std::unique_ptr<VelocityBlock> velocity_block;
