@@ -312,11 +312,13 @@ namespace Fidus
       // auto: the faster one per dimension as measured
       // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
       // the GMG does not have.
-      // auto: direct in 2D (doc/fluid.md, "A direct solver for 2D").
-      const std::string method = prm.get("Method");
-      direct_stokes_solver =
-        method == "direct" || (method == "auto" && dim == 2);
+      // auto: direct in 2D (doc/fluid.md, "A direct solver for 2D"),
+      // unless a preconditioner was chosen by name, which asks for FGMRES.
+      const std::string method         = prm.get("Method");
       const std::string preconditioner = prm.get("Preconditioner");
+      direct_stokes_solver =
+        method == "direct" ||
+        (method == "auto" && dim == 2 && preconditioner == "auto");
       geometric_multigrid =
         preconditioner == "GMG" ||
         (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);

@@ -349,8 +349,9 @@ namespace Fidus
           "factorises it once per time step (MUMPS, or KLU where Trilinos "
           "has no MUMPS), so that each Uzawa iteration is one substitution; "
           "'auto': direct in 2D, iterative in 3D, where the factorisation "
-          "grows too fast with the mesh (measured in doc/fluid.md, 'A "
-          "direct solver for 2D').");
+          "grows too fast with the mesh, and iterative wherever "
+          "Preconditioner names one (measured in doc/fluid.md, 'A direct "
+          "solver for 2D').");
         prm.declare_entry(
           "Preconditioner",
           "auto",
