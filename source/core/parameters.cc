@@ -319,6 +319,11 @@ namespace Fidus
       direct_stokes_solver =
         method == "direct" ||
         (method == "auto" && dim == 2 && preconditioner == "auto");
+      // auto: FGMRES above a million unknowns, where the factorisation
+      // takes more than twice FGMRES's memory and no less time.
+      direct_max_unknowns = method == "direct" ?
+                              std::numeric_limits<unsigned long long>::max() :
+                              1000000ULL;
       geometric_multigrid =
         preconditioner == "GMG" ||
         (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);

@@ -348,10 +348,10 @@ namespace Fidus
           "runs FGMRES with the block preconditioner set below; 'direct' "
           "factorises it once per time step (MUMPS, or KLU where Trilinos "
           "has no MUMPS), so that each Uzawa iteration is one substitution; "
-          "'auto': direct in 2D, iterative in 3D, where the factorisation "
-          "grows too fast with the mesh, and iterative wherever "
-          "Preconditioner names one (measured in doc/fluid.md, 'A direct "
-          "solver for 2D').");
+          "'auto': direct in 2D up to a million unknowns; iterative on "
+          "larger meshes, in 3D, where the factorisation grows too fast "
+          "with the mesh, and wherever Preconditioner names one (measured "
+          "in doc/fluid.md, 'A direct solver for 2D').");
         prm.declare_entry(
           "Preconditioner",
           "auto",

@@ -145,8 +145,10 @@ namespace Fidus
 
     // The multigrid hierarchy first: whether it can be built on this mesh
     // decides whether the system holds an assembled velocity block.
-    multigrid_active = settings.geometric_multigrid && !settings.direct_solver;
     direct.reset();
+    direct_active = settings.direct_solver &&
+                    dof_handler.n_dofs() <= settings.direct_max_unknowns;
+    multigrid_active = settings.geometric_multigrid && !direct_active;
     if (multigrid_active)
       {
         typename VelocityMultigrid<dim>::Settings mg;

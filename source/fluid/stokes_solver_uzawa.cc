@@ -321,7 +321,7 @@ namespace Fidus
     stats.assemble_seconds = timer.wall_time();
 
     timer.restart();
-    if (settings.direct_solver)
+    if (direct_active)
       direct = std::make_unique<DirectStokesSolver>(system_matrix,
                                                     owned_partitioning,
                                                     pinned_pressure,

@@ -168,13 +168,15 @@ namespace Fidus
     unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";
     /// Fluid/Linear solver/Method, resolved: a direct factorisation.
-    bool         direct_stokes_solver       = false;
-    bool         geometric_multigrid        = false;
-    unsigned int mg_smoother_degree         = 4;
-    std::string  mg_viscosity_averaging     = "none";
-    std::string  mg_smoother_blocks         = "cut cells";
-    bool         rigid_body_correction      = true;
-    bool         matrix_free_velocity_block = true;
+    bool direct_stokes_solver = false;
+    /// ... up to this many unknowns (auto: FGMRES on larger 2D meshes).
+    unsigned long long direct_max_unknowns        = 0;
+    bool               geometric_multigrid        = false;
+    unsigned int       mg_smoother_degree         = 4;
+    std::string        mg_viscosity_averaging     = "none";
+    std::string        mg_smoother_blocks         = "cut cells";
+    bool               rigid_body_correction      = true;
+    bool               matrix_free_velocity_block = true;
 
     // Particles
     std::vector<std::array<double, 3>> positions;

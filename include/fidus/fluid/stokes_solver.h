@@ -84,10 +84,12 @@ namespace Fidus
       /// ML AMG.
       /// Factorise the system once per solve (DirectStokesSolver) instead
       /// of FGMRES; the preconditioner settings are then unused.
-      bool         direct_solver          = false;
-      bool         geometric_multigrid    = false;
-      unsigned int mg_smoother_degree     = 4;
-      std::string  mg_viscosity_averaging = "galerkin";
+      bool direct_solver = false;
+      /// ... on meshes of at most this many unknowns; FGMRES above.
+      types::global_dof_index direct_max_unknowns = numbers::invalid_dof_index;
+      bool                    geometric_multigrid = false;
+      unsigned int            mg_smoother_degree  = 4;
+      std::string             mg_viscosity_averaging = "galerkin";
       /// GMG smoother blocks: none or cut cells (VelocityMultigrid).
       std::string mg_smoother_blocks = "cut cells";
       /// With the geometric multigrid: multiply by the velocity block with
@@ -450,7 +452,10 @@ namespace Fidus
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
-    /// With Settings::direct_solver: the factorised system of this solve.
+    /// Whether this mesh is solved directly (Settings::direct_solver and
+    /// direct_max_unknowns), decided by setup_dofs().
+    bool direct_active = false;
+    /// With direct_active: the factorised system of this solve.
     std::unique_ptr<DirectStokesSolver> direct;
     /// The pressure unknown (within the pressure block) that the direct
     /// solver fixes at zero: the pressure is defined up to a constant.
