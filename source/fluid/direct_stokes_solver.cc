@@ -1,4 +1,6 @@
+#include <Amesos.h>
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
 #include <algorithm>
 #include <cmath>
 #include <deal.II/base/exceptions.h>
@@ -38,22 +40,68 @@ namespace Fidus
         owned[1].is_element(pinned_pressure))
       pinned_here = offset[1] + pinned_pressure;
 
-    // Each owned row of the block system, with monolithic column numbers,
-    // read straight from the Epetra rows (deal.II's element iterators cost
-    // ten times the factorisation on a 2D mesh of 4000 unknowns).
-    std::vector<std::vector<types::global_dof_index>> columns;
-    std::vector<std::vector<double>>                  values;
-    columns.reserve(owned_rows.n_elements());
-    values.reserve(owned_rows.n_elements());
+    // The pattern: each owned row with monolithic column numbers, the
+    // diagonal first (read_rows()).
     DynamicSparsityPattern pattern(n, n, owned_rows);
+    read_rows([&](const types::global_dof_index         row,
+                  std::vector<types::global_dof_index> &c,
+                  const std::vector<double> &) {
+      pattern.add_entries(row, c.begin(), c.end());
+      columns.push_back(c);
+    });
+    matrix.reinit(owned_rows, owned_rows, pattern, communicator);
+    copy_values();
+    x_flat.reinit(owned_rows, communicator);
+    b_flat.reinit(owned_rows, communicator);
+    problem =
+      std::make_unique<Epetra_LinearProblem>(const_cast<Epetra_CrsMatrix *>(
+                                               &matrix.trilinos_matrix()),
+                                             &x_flat.trilinos_vector(),
+                                             &b_flat.trilinos_vector());
+
+    // MUMPS first: on the 2D meshes of the paper scene it factorises
+    // faster than KLU, whose ordering is meant for circuit matrices; KLU
+    // where the Trilinos build has no MUMPS.
+    Amesos factory;
+    for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
+      if (factory.Query(name))
+        {
+          solver.reset(factory.Create(name, *problem));
+          if (solver)
+            {
+              package_name = name;
+              break;
+            }
+        }
+    if (!solver)
+      throw RunError("the direct Stokes solver (Fluid/Linear solver/Method "
+                     "= direct) found neither MUMPS nor KLU in Trilinos' "
+                     "Amesos; use Method = iterative");
+    if (solver->SymbolicFactorization() != 0)
+      throw RunError("the direct Stokes solver (" + package_name +
+                     ") could not analyse the system of " + std::to_string(n) +
+                     " unknowns; use Method = iterative");
+    factorise();
+    setup_time = timer.wall_time();
+  }
+
+
+
+  template <class RowFunction>
+  void
+  DirectStokesSolver::read_rows(const RowFunction &f) const
+  {
+    // Straight from the Epetra rows: deal.II's element iterators cost ten
+    // times the factorisation on a 2D mesh of 4000 unknowns.
+    std::vector<types::global_dof_index> c;
+    std::vector<double>                  v;
+    const unsigned int                   n_blocks = owned.size();
     for (unsigned int i = 0; i < n_blocks; ++i)
       for (const auto r : owned[i])
         {
           const types::global_dof_index row = offset[i] + r;
-          columns.emplace_back(1, row);
-          values.emplace_back(1, 0.);
-          auto &c = columns.back();
-          auto &v = values.back();
+          c.assign(1, row);
+          v.assign(1, 0.);
           for (unsigned int j = 0; j < n_blocks; ++j)
             {
               const Epetra_CrsMatrix &block =
@@ -88,48 +136,50 @@ namespace Fidus
               c.resize(1);
               v.assign(1, scale > 0. ? scale : 1.);
             }
-          pattern.add_entries(row, c.begin(), c.end());
+          f(row, c, v);
         }
-    matrix.reinit(owned_rows, owned_rows, pattern, communicator);
-    {
-      unsigned int k = 0;
-      for (const auto row : owned_rows)
-        {
-          matrix.set(row,
-                     columns[k].size(),
-                     columns[k].data(),
-                     values[k].data());
-          ++k;
-        }
-    }
-    matrix.compress(VectorOperation::insert);
-    x_flat.reinit(owned_rows, communicator);
-    b_flat.reinit(owned_rows, communicator);
+  }
 
-    // MUMPS first: on the 2D meshes of the paper scene it factorises
-    // several times faster than KLU, whose ordering is meant for circuit
-    // matrices; KLU where the Trilinos build has no MUMPS.
-    std::string failures;
-    for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
-      try
-        {
-          direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-            control,
-            TrilinosWrappers::SolverDirect::AdditionalData(false, name));
-          direct->initialize(matrix);
-          package_name = name;
-          break;
-        }
-      catch (const ExceptionBase &e)
-        {
-          failures += std::string(" ") + name + ": " + e.get_exc_name() + ";";
-          direct.reset();
-        }
-    if (!direct)
-      throw RunError("the direct Stokes solver (Fluid/Linear solver/Method = "
-                     "direct) could not factorise the system of " +
-                     std::to_string(n) + " unknowns (" + failures +
-                     "); use Method = iterative");
+
+
+  void
+  DirectStokesSolver::copy_values()
+  {
+    // The block matrix's pattern is fixed for one mesh, so each row comes
+    // in the order in which the pattern was built.
+    unsigned int k = 0;
+    read_rows([&](const types::global_dof_index         row,
+                  std::vector<types::global_dof_index> &c,
+                  const std::vector<double>            &v) {
+      Assert(c == columns[k], ExcInternalError());
+      (void)c;
+      matrix.set(row, columns[k].size(), columns[k].data(), v.data());
+      ++k;
+    });
+    matrix.compress(VectorOperation::insert);
+  }
+
+
+
+  void
+  DirectStokesSolver::factorise()
+  {
+    if (solver->NumericFactorization() != 0)
+      throw RunError("the direct Stokes solver (" + package_name +
+                     ") could not factorise the system of " +
+                     std::to_string(matrix.m()) +
+                     " unknowns (numerically singular); use Method = "
+                     "iterative or a smaller Penalty factor");
+  }
+
+
+
+  void
+  DirectStokesSolver::refactorise()
+  {
+    Timer timer;
+    copy_values();
+    factorise();
     setup_time = timer.wall_time();
   }
 
@@ -183,7 +233,9 @@ namespace Fidus
     for (; passes < 4 && r_norm > tolerance * b_norm; ++passes)
       {
         gather(residual, b_flat);
-        direct->solve(x_flat, b_flat);
+        if (solver->Solve() != 0)
+          throw RunError("the direct Stokes solver (" + package_name +
+                         ") failed in its substitution");
         scatter(x_flat, correction);
         x += correction;
         block_matrix.vmult(residual, x);

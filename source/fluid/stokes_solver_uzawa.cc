@@ -322,10 +322,17 @@ namespace Fidus
 
     timer.restart();
     if (direct_active)
-      direct = std::make_unique<DirectStokesSolver>(system_matrix,
-                                                    owned_partitioning,
-                                                    pinned_pressure,
-                                                    mpi_communicator);
+      {
+        // The first solve on a mesh copies the pattern and analyses it;
+        // later ones (setup_dofs() resets it) copy values and factorise.
+        if (direct)
+          direct->refactorise();
+        else
+          direct = std::make_unique<DirectStokesSolver>(system_matrix,
+                                                        owned_partitioning,
+                                                        pinned_pressure,
+                                                        mpi_communicator);
+      }
     else
       {
         setup_preconditioners(solid, fluid_viscosity);

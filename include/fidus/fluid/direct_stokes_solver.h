@@ -1,10 +1,11 @@
 #ifndef fidus_fluid_direct_stokes_solver_h
 #define fidus_fluid_direct_stokes_solver_h
 
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <memory>
@@ -29,7 +30,10 @@ namespace Fidus
    *
    * The block system [A B^T; B 0] (hanging-node, periodic and boundary
    * rows reduced to their diagonal by the assembly) is copied into one
-   * distributed Trilinos matrix. With velocity imposed on the whole
+   * distributed Trilinos matrix. Its pattern and the factorisation's
+   * analysis (ordering, symbolic factorisation) are kept for as long as the
+   * mesh is: a later time step only copies the values and factorises
+   * again (refactorise()). With velocity imposed on the whole
    * boundary the pressure is fixed up to a constant, so the row of one
    * unconstrained pressure unknown is replaced by p_pin = 0; the
    * right-hand side is consistent (StokesSolver removes its
@@ -58,6 +62,13 @@ namespace Fidus
                        MPI_Comm                communicator);
 
     /**
+     * Factorise again after the values of the block matrix changed on the
+     * same mesh (its sparsity, and so the analysis, are kept).
+     */
+    void
+    refactorise();
+
+    /**
      * Solve matrix x = b to a residual below @p tolerance times |b| (at
      * most three refinement passes; RunError otherwise). Returns the
      * number of substitutions it took.
@@ -74,7 +85,7 @@ namespace Fidus
       return package_name;
     }
 
-    /// Wall seconds of the copy and the factorisation.
+    /// Wall seconds of the last copy and factorisation.
     double
     setup_seconds() const
     {
@@ -82,6 +93,17 @@ namespace Fidus
     }
 
   private:
+    /// Call @p f(row, columns, values) for each owned row of the
+    /// monolithic system (the diagonal first; the pinned row reduced).
+    template <class RowFunction>
+    void
+    read_rows(const RowFunction &f) const;
+    /// Copy the block matrix's values into the monolithic one.
+    void
+    copy_values();
+    /// Numeric factorisation (the analysis is made once per mesh).
+    void
+    factorise();
     void
     gather(const TrilinosWrappers::MPI::BlockVector &source,
            TrilinosWrappers::MPI::Vector            &target) const;
@@ -97,12 +119,14 @@ namespace Fidus
     /// it; numbers::invalid_dof_index otherwise.
     types::global_dof_index pinned_here;
 
-    TrilinosWrappers::SparseMatrix                  matrix;
-    TrilinosWrappers::MPI::Vector                   x_flat, b_flat;
-    SolverControl                                   control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
-    std::string                                     package_name;
-    double                                          setup_time = 0.;
+    /// The monolithic pattern: per owned row, its columns.
+    std::vector<std::vector<types::global_dof_index>> columns;
+    TrilinosWrappers::SparseMatrix                    matrix;
+    TrilinosWrappers::MPI::Vector                     x_flat, b_flat;
+    std::unique_ptr<Epetra_LinearProblem>             problem;
+    std::unique_ptr<Amesos_BaseSolver>                solver;
+    std::string                                       package_name;
+    double                                            setup_time = 0.;
   };
 } // namespace Fidus
 
