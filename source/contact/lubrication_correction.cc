@@ -182,6 +182,15 @@ namespace Fidus::Contact
 
 
   void
+  LubricationCorrection::set_wall_velocity(
+    std::function<Vec3(const Wall &, const Vec3 &)> velocity)
+  {
+    wall_velocity_at = std::move(velocity);
+  }
+
+
+
+  void
   LubricationCorrection::set_periodicity(const std::array<double, 3> &periods)
   {
     search.set_periodicity(periods);
@@ -558,8 +567,12 @@ namespace Fidus::Contact
           b.gap    = b.length - radii[i];
           if (b.gap >= std::max(h_w, h_wt))
             continue;
-          b.n[wall.axis]             = -wall.side;
-          b.wall_velocity            = wall.velocity;
+          b.n[wall.axis] = -wall.side;
+          // The wall's velocity at the foot of the particle's normal.
+          Vec3 foot       = positions[i];
+          foot[wall.axis] = wall.position;
+          b.wall_velocity =
+            wall_velocity_at ? wall_velocity_at(wall, foot) : wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
           if (make_bond(b, radii[i], h_w, h_w, h_wt))
             {

@@ -12,7 +12,8 @@ namespace Fidus
         lo[d] = prm.lower_left[d];
         hi[d] = prm.upper_right[d];
       }
-    y_mid = 0.5 * (lo[1] + hi[1]);
+    y_mid  = 0.5 * (lo[1] + hi[1]);
+    cavity = prm.boundary_condition == BoundaryCondition::cavity;
     if (!prm.radii.empty())
       {
         a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
@@ -71,6 +72,20 @@ namespace Fidus
               w.position = side > 0 ? lo[d] : hi[d];
               walls.push_back(w);
             }
+  }
+
+
+
+  template <int dim>
+  Contact::Vec3
+  BoxGeometry<dim>::wall_velocity(const Contact::Wall &wall,
+                                  const Contact::Vec3 &point,
+                                  const double         shear_rate) const
+  {
+    Contact::Vec3 u = {{0., 0., 0.}};
+    if (!cavity || wall.axis == 1)
+      u[0] = shear_rate * (point[1] - y_mid);
+    return u;
   }
 
 

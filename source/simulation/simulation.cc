@@ -480,6 +480,16 @@ namespace Fidus
       return;
     TimerOutput::Scope scope(*timer, "lubrication");
     const unsigned int next = state.step + 1;
+    // The walls slide with the shear rate at which u_star is given, that of
+    // the middle of the step (extrapolate_velocities()). Without it they
+    // stood still: in a dense 2D suspension their tangential lubrication
+    // braked every disc next to them, and the suspension's lubrication
+    // stress came out negative (doc/lubrication.md).
+    const double rate = shear(state.time + 0.5 * dt);
+    lubrication->set_wall_velocity(
+      [this, rate](const Contact::Wall &wall, const Contact::Vec3 &point) {
+        return box.wall_velocity(wall, point, rate);
+      });
     try
       {
         lubrication_stats = lubrication->correct(state.X,

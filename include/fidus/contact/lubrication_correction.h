@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <fidus/contact/contact_types.h>
 #include <fidus/contact/pair_search.h>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -194,6 +195,17 @@ namespace Fidus::Contact
     void
     set_walls(const std::vector<Wall> &walls);
 
+    /**
+     * How fast the walls move where a particle faces them: @p velocity
+     * (wall, point on the wall) replaces Wall::velocity for the next
+     * correct() calls (its normal component is dropped). Sheared boxes
+     * need it, since their walls move with the shear rate of the step, and
+     * the faces of a linear-shear box move differently from point to point.
+     */
+    void
+    set_wall_velocity(
+      std::function<Vec3(const Wall &wall, const Vec3 &point)> velocity);
+
     /// Periodic directions (see PairSearch::set_periodicity()).
     void
     set_periodicity(const std::array<double, 3> &periods);
@@ -357,11 +369,13 @@ namespace Fidus::Contact
           std::vector<double>       &x,
           LubricationStatistics     &stat) const;
 
-    LubricationSettings          settings;
-    PairSearch                   search;
-    std::vector<Wall>            walls;
-    std::vector<LubricationBond> bond;
-    std::vector<Vec3>            external_force;
+    LubricationSettings settings;
+    PairSearch          search;
+    std::vector<Wall>   walls;
+    /// See set_wall_velocity(); empty: Wall::velocity.
+    std::function<Vec3(const Wall &, const Vec3 &)> wall_velocity_at;
+    std::vector<LubricationBond>                    bond;
+    std::vector<Vec3>                               external_force;
   };
 } // namespace Fidus::Contact
 

@@ -53,6 +53,20 @@ namespace Fidus
     /// Bring centres that crossed a periodic face back into the box.
     void
     wrap(std::vector<std::array<double, 3>> &positions) const;
+
+    /**
+     * The velocity of @p wall at @p point on it when the box is sheared at
+     * @p shear_rate: the imposed boundary velocity (BoundaryVelocity),
+     * g (y - y_mid) e_x, on the y walls and, in linear shear, on the z
+     * walls; zero on the cavity's fixed walls.
+     */
+    Contact::Vec3
+    wall_velocity(const Contact::Wall &wall,
+                  const Contact::Vec3 &point,
+                  const double         shear_rate) const;
+
+    /// Whether only the y walls move (BoundaryCondition::cavity).
+    bool cavity = false;
   };
 } // namespace Fidus
 
