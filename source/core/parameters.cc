@@ -309,21 +309,20 @@ namespace Fidus
       amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
       amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
       amg_smoother_type         = prm.get("AMG smoother type");
-      // auto: the faster one per dimension as measured
-      // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
-      // the GMG does not have.
-      // auto: direct in 2D (doc/fluid.md, "A direct solver for 2D"),
-      // unless a preconditioner was chosen by name, which asks for FGMRES.
+      // Method auto: direct in 2D (doc/fluid.md, "A direct solver for
+      // 2D"), unless a preconditioner was chosen by name, which asks for
+      // FGMRES; and FGMRES above a million unknowns, where the
+      // factorisation takes more than twice FGMRES's memory and no less
+      // time.
       const std::string method         = prm.get("Method");
       const std::string preconditioner = prm.get("Preconditioner");
-      direct_stokes_solver =
-        method == "direct" ||
-        (method == "auto" && dim == 2 && preconditioner == "auto");
-      // auto: FGMRES above a million unknowns, where the factorisation
-      // takes more than twice FGMRES's memory and no less time.
-      direct_max_unknowns = method == "direct" ?
-                              std::numeric_limits<unsigned long long>::max() :
-                              1000000ULL;
+      direct_max_unknowns =
+        method == "direct" ? std::numeric_limits<unsigned long long>::max() :
+        method == "auto" && dim == 2 && preconditioner == "auto" ? 1000000ULL :
+                                                                   0ULL;
+      // Preconditioner auto: the faster one per dimension as measured
+      // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
+      // the GMG does not have.
       geometric_multigrid =
         preconditioner == "GMG" ||
         (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/direct_stokes_solver.h>
@@ -22,7 +21,6 @@ namespace Fidus
     , owned(owned)
     , pinned_here(numbers::invalid_dof_index)
   {
-    Timer              timer;
     const unsigned int n_blocks = owned.size();
     offset.assign(n_blocks + 1, 0);
     for (unsigned int k = 0; k < n_blocks; ++k)
@@ -82,7 +80,6 @@ namespace Fidus
                      ") could not analyse the system of " + std::to_string(n) +
                      " unknowns; use Method = iterative");
     factorise();
-    setup_time = timer.wall_time();
   }
 
 
@@ -177,10 +174,8 @@ namespace Fidus
   void
   DirectStokesSolver::refactorise()
   {
-    Timer timer;
     copy_values();
     factorise();
-    setup_time = timer.wall_time();
   }
 
 

@@ -146,8 +146,7 @@ namespace Fidus
     // The multigrid hierarchy first: whether it can be built on this mesh
     // decides whether the system holds an assembled velocity block.
     direct.reset();
-    direct_active = settings.direct_solver &&
-                    dof_handler.n_dofs() <= settings.direct_max_unknowns;
+    direct_active    = dof_handler.n_dofs() <= settings.direct_max_unknowns;
     multigrid_active = settings.geometric_multigrid && !direct_active;
     if (multigrid_active)
       {
@@ -195,16 +194,18 @@ namespace Fidus
     // The direct solver's pinned pressure: the lowest unconstrained one
     // (hanging and periodic pressures are constrained), the same on every
     // rank.
-    {
-      types::global_dof_index first = numbers::invalid_dof_index;
-      for (const auto i : owned_partitioning[1])
-        if (!constraints.is_constrained(n_u + i))
-          {
-            first = i;
-            break;
-          }
-      pinned_pressure = Utilities::MPI::min(first, mpi_communicator);
-    }
+    pinned_pressure = numbers::invalid_dof_index;
+    if (direct_active)
+      {
+        types::global_dof_index first = numbers::invalid_dof_index;
+        for (const auto i : owned_partitioning[1])
+          if (!constraints.is_constrained(n_u + i))
+            {
+              first = i;
+              break;
+            }
+        pinned_pressure = Utilities::MPI::min(first, mpi_communicator);
+      }
     conforming_constraints.clear();
     conforming_constraints.reinit(locally_relevant_dofs);
     add_conforming_constraints(conforming_constraints);

@@ -194,26 +194,23 @@ namespace Fidus
                     resume ? 0 : prm.initial_global_refinement);
 
     typename StokesSolver<dim>::Settings ss;
-    ss.degree                    = prm.velocity_degree;
-    ss.viscosity                 = prm.viscosity;
-    ss.penalty_factor            = prm.penalty_factor;
-    ss.rigidity_tolerance        = prm.rigidity_tolerance;
-    ss.rigidity_per_particle     = prm.rigidity_per_particle;
-    ss.rigid_velocity_tolerance  = prm.rigid_velocity_tolerance;
-    ss.forced_velocity_scale     = forced_velocity_scale(prm);
-    ss.sliver_threshold          = prm.sliver_threshold;
-    ss.max_uzawa_iterations      = prm.max_uzawa_iterations;
-    ss.linear_tolerance          = prm.linear_tolerance;
-    ss.inexact_uzawa_factor      = prm.inexact_uzawa_factor;
-    ss.max_cheap_iterations      = prm.max_cheap_iterations;
-    ss.max_linear_iterations     = prm.max_linear_iterations;
-    ss.amg_aggregation_threshold = prm.amg_aggregation_threshold;
-    ss.amg_smoother_sweeps       = prm.amg_smoother_sweeps;
-    ss.amg_smoother_type         = prm.amg_smoother_type;
-    ss.direct_solver             = prm.direct_stokes_solver;
-    ss.direct_max_unknowns       = static_cast<types::global_dof_index>(
-      std::min<unsigned long long>(prm.direct_max_unknowns,
-                                   numbers::invalid_dof_index));
+    ss.degree                     = prm.velocity_degree;
+    ss.viscosity                  = prm.viscosity;
+    ss.penalty_factor             = prm.penalty_factor;
+    ss.rigidity_tolerance         = prm.rigidity_tolerance;
+    ss.rigidity_per_particle      = prm.rigidity_per_particle;
+    ss.rigid_velocity_tolerance   = prm.rigid_velocity_tolerance;
+    ss.forced_velocity_scale      = forced_velocity_scale(prm);
+    ss.sliver_threshold           = prm.sliver_threshold;
+    ss.max_uzawa_iterations       = prm.max_uzawa_iterations;
+    ss.linear_tolerance           = prm.linear_tolerance;
+    ss.inexact_uzawa_factor       = prm.inexact_uzawa_factor;
+    ss.max_cheap_iterations       = prm.max_cheap_iterations;
+    ss.max_linear_iterations      = prm.max_linear_iterations;
+    ss.amg_aggregation_threshold  = prm.amg_aggregation_threshold;
+    ss.amg_smoother_sweeps        = prm.amg_smoother_sweeps;
+    ss.amg_smoother_type          = prm.amg_smoother_type;
+    ss.direct_max_unknowns        = prm.direct_max_unknowns;
     ss.geometric_multigrid        = prm.geometric_multigrid;
     ss.mg_smoother_degree         = prm.mg_smoother_degree;
     ss.mg_viscosity_averaging     = prm.mg_viscosity_averaging;

@@ -167,9 +167,8 @@ namespace Fidus
     double       amg_aggregation_threshold = 0.;
     unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";
-    /// Fluid/Linear solver/Method, resolved: a direct factorisation.
-    bool direct_stokes_solver = false;
-    /// ... up to this many unknowns (auto: FGMRES on larger 2D meshes).
+    /// Fluid/Linear solver/Method, resolved: a direct factorisation on
+    /// meshes of at most this many unknowns, FGMRES above (0: never).
     unsigned long long direct_max_unknowns        = 0;
     bool               geometric_multigrid        = false;
     unsigned int       mg_smoother_degree         = 4;

@@ -70,27 +70,13 @@ namespace Fidus
 
     /**
      * Solve matrix x = b to a residual below @p tolerance times |b| (at
-     * most three refinement passes; RunError otherwise). Returns the
+     * most four refinement passes; RunError otherwise). Returns the
      * number of substitutions it took.
      */
     unsigned int
     solve(TrilinosWrappers::MPI::BlockVector       &x,
           const TrilinosWrappers::MPI::BlockVector &b,
           double                                    tolerance);
-
-    /// The Amesos solver in use: "Amesos_Mumps" or "Amesos_Klu".
-    const std::string &
-    package() const
-    {
-      return package_name;
-    }
-
-    /// Wall seconds of the last copy and factorisation.
-    double
-    setup_seconds() const
-    {
-      return setup_time;
-    }
 
   private:
     /// Call @p f(row, columns, values) for each owned row of the
@@ -125,8 +111,8 @@ namespace Fidus
     TrilinosWrappers::MPI::Vector                     x_flat, b_flat;
     std::unique_ptr<Epetra_LinearProblem>             problem;
     std::unique_ptr<Amesos_BaseSolver>                solver;
-    std::string                                       package_name;
-    double                                            setup_time = 0.;
+    /// The Amesos solver in use: "Amesos_Mumps" or "Amesos_Klu".
+    std::string package_name;
   };
 } // namespace Fidus
 

@@ -80,16 +80,15 @@ namespace Fidus
       double       amg_aggregation_threshold = 0.;
       unsigned int amg_smoother_sweeps       = 4;
       std::string  amg_smoother_type         = "Chebyshev";
+      /// Factorise the system once per solve (DirectStokesSolver) instead
+      /// of FGMRES on meshes of at most this many unknowns (0: never); the
+      /// preconditioner settings are then unused.
+      unsigned long long direct_max_unknowns = 0;
       /// Velocity-block preconditioner: geometric multigrid (true) or the
       /// ML AMG.
-      /// Factorise the system once per solve (DirectStokesSolver) instead
-      /// of FGMRES; the preconditioner settings are then unused.
-      bool direct_solver = false;
-      /// ... on meshes of at most this many unknowns; FGMRES above.
-      types::global_dof_index direct_max_unknowns = numbers::invalid_dof_index;
-      bool                    geometric_multigrid = false;
-      unsigned int            mg_smoother_degree  = 4;
-      std::string             mg_viscosity_averaging = "galerkin";
+      bool         geometric_multigrid    = false;
+      unsigned int mg_smoother_degree     = 4;
+      std::string  mg_viscosity_averaging = "galerkin";
       /// GMG smoother blocks: none or cut cells (VelocityMultigrid).
       std::string mg_smoother_blocks = "cut cells";
       /// With the geometric multigrid: multiply by the velocity block with
@@ -452,7 +451,7 @@ namespace Fidus
 
     class Preconditioners;
     std::unique_ptr<Preconditioners> preconditioners;
-    /// Whether this mesh is solved directly (Settings::direct_solver and
+    /// Whether this mesh is solved directly (Settings::
     /// direct_max_unknowns), decided by setup_dofs().
     bool direct_active = false;
     /// With direct_active: the factorised system of this solve.
