@@ -4,6 +4,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <fidus/rheology/hydrodynamic_stress.h>
+#include <fidus/rheology/plane_strain.h>
 #include <limits>
 #include <map>
 
@@ -264,6 +265,17 @@ namespace Fidus
         Tensor3 s = read_from(part, o) - 2. * eta_f * read_from(part, o + 6);
         for (unsigned int d = 0; d < 3; ++d)
           s[d][d] += r.fluid_pressure * part[o + 12];
+        // In plane strain the solid's -p in zz is only the pressure's
+        // share of its isotropic stress: inside a held particle the
+        // multiplier's trace enforces div u = 0 as well, and how the two
+        // split depends on the Uzawa history. The rule of every 2D
+        // particle stress (with_plane_strain_zz()) does not.
+        if (dim == 2)
+          {
+            r.total[2][2] -= s[2][2] / r.volume;
+            s = with_plane_strain_zz(s);
+            r.total[2][2] += s[2][2] / r.volume;
+          }
         r.stresslets[a] = s;
         r.particle += s / r.volume;
       }

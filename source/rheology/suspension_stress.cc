@@ -31,8 +31,8 @@ namespace Fidus
   {
     const double nan   = std::numeric_limits<double>::quiet_NaN();
     const auto   total = hydrodynamic + contact + lubrication;
-    // Plane strain in 2D: the contact stress has no z part, the
-    // hydrodynamic one carries -p in zz.
+    // Plane strain in 2D: every part comes with its zz entry
+    // (with_plane_strain_zz()).
     const double scale = shear_rate != 0. ? 1. / (eta_f * shear_rate) : nan;
 
     SuspensionStress s;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fidus/rheology/contact_stress.h>
 #include <fidus/rheology/lubrication_stress.h>
+#include <fidus/rheology/plane_strain.h>
 #include <fidus/simulation/progress_line.h>
 #include <fidus/simulation/simulation.h>
 #include <iomanip>
@@ -63,15 +64,21 @@ namespace Fidus
             hydrodynamic.wall[a][b] = std::numeric_limits<double>::quiet_NaN();
         hydrodynamic.stresslets.assign(n, SymmetricTensor<2, 3>());
       }
-    const SymmetricTensor<2, 3> contact =
-      contact_stress(projector.constraints(),
-                     prm.radii,
-                     contact_drag,
-                     hydrodynamic.volume);
-    const SymmetricTensor<2, 3> lubricated =
+    SymmetricTensor<2, 3> contact = contact_stress(projector.constraints(),
+                                                   prm.radii,
+                                                   contact_drag,
+                                                   hydrodynamic.volume);
+    SymmetricTensor<2, 3> lubricated =
       lubrication ?
         lubrication_stress(lubrication->bonds(), hydrodynamic.volume) :
         SymmetricTensor<2, 3>();
+    // The forces between discs press on their cylinders' axial stress as
+    // the resolved gap pressure does (with_plane_strain_zz()).
+    if (dim == 2)
+      {
+        contact    = with_plane_strain_zz(contact);
+        lubricated = with_plane_strain_zz(lubricated);
+      }
     stress = SuspensionStress::combine(hydrodynamic.total,
                                        hydrodynamic.particle,
                                        hydrodynamic.wall[0][1],
@@ -92,11 +99,17 @@ namespace Fidus
     const RunState    &s = state;
     if (s.step % prm.particle_csv_interval == 0)
       {
-        const std::vector<SymmetricTensor<2, 3>> contact =
+        std::vector<SymmetricTensor<2, 3>> contact =
           contact_stresslets(projector.constraints(), prm.radii, contact_drag);
-        const std::vector<SymmetricTensor<2, 3>> lubricated =
+        std::vector<SymmetricTensor<2, 3>> lubricated =
           lubrication ? lubrication_stresslets(lubrication->bonds(), n) :
                         std::vector<SymmetricTensor<2, 3>>(n);
+        if (dim == 2)
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              contact[i]    = with_plane_strain_zz(contact[i]);
+              lubricated[i] = with_plane_strain_zz(lubricated[i]);
+            }
         for (unsigned int i = 0; i < n; ++i)
           {
             const SymmetricTensor<2, 3> &h = hydrodynamic.stresslets[i];

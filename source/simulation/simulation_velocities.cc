@@ -4,6 +4,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/cut_stokes_inclusion.h>
 #include <fidus/particles/rigid_motion.h>
+#include <fidus/rheology/plane_strain.h>
 #include <fidus/simulation/simulation.h>
 #include <sstream>
 
@@ -405,9 +406,8 @@ namespace Fidus
     // The stress in the form of HydrodynamicStress (doc/rheology.md):
     // Sigma = -<p>_f I + 2 eta <e(u)> + (1/V) sum S_a over the unit box,
     // where <e(u)> is the boundary's shear, since the velocity is rigid
-    // in the particles. In plane strain the zz stresslet is the particle's
-    // int (<p>_f - p), which is half the in-plane trace: the in-plane
-    // trace of a rigid particle's stress is -2p. Between sliding walls the
+    // in the particles. In plane strain the zz stresslet is half the
+    // in-plane trace (with_plane_strain_zz()). Between sliding walls the
     // walls' stress sigma e_y is measured too (entries (a, y)), as the
     // fictitious domain's is; with linear shear it is not (NaN).
     using Tensor3            = typename HydrodynamicStress<dim>::Tensor3;
@@ -424,7 +424,7 @@ namespace Fidus
           for (unsigned int b = a; b < dim; ++b)
             S[a][b] = r.stresslets[i][a][b];
         if (dim == 2)
-          S[2][2] = 0.5 * (S[0][0] + S[1][1]);
+          S = with_plane_strain_zz(S);
         h.stresslets.push_back(S);
         h.particle += S / h.volume;
       }

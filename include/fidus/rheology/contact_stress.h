@@ -21,7 +21,8 @@ namespace Fidus
    * centre to centre, D_k + a_i + a_j, for a pair; centre to the wall,
    * D_k + a_i, for a particle-wall row. Repulsion (lambda > 0) gives a
    * compressive (negative) normal stress, glue under tension the opposite.
-   * A 3 x 3 tensor; in 2D its z row is zero.
+   * A 3 x 3 tensor; in 2D its z row is zero, and the caller adds the
+   * plane-strain zz entry (with_plane_strain_zz()).
    */
   dealii::SymmetricTensor<2, 3>
   contact_stress(const Contact::ConstraintSystem &rows,

@@ -33,7 +33,8 @@ namespace Fidus
    *
    * The two agree to the linear solver's tolerance; a wrong solid stress or
    * multiplier term breaks the agreement. In 2D the tensors are 3 x 3 in
-   * plane strain: sigma_zz = -p.
+   * plane strain: sigma_zz = -p in the fluid, and each particle's zz
+   * stresslet is half its in-plane trace (with_plane_strain_zz()).
    */
   template <int dim>
   class HydrodynamicStress
@@ -47,7 +48,7 @@ namespace Fidus
     {
       /// Volume (2D: area) of the box.
       double volume = 0.;
-      /// (1/V) int sigma over the box.
+      /// (1/V) int sigma over the box (2D: zz with the particles' rule).
       Tensor3 total;
       /// (1/V) int e(u) over the box.
       Tensor3 mean_strain_rate;

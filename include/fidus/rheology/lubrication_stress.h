@@ -18,7 +18,8 @@ namespace Fidus
    * (LubricationBond::tangential_force, zero without tangential terms) and
    * l_b the branch length (centre to centre, or centre to wall). Like the
    * contact stress: a squeeze that resists approach (f > 0) is compressive.
-   * A 3 x 3 tensor; in 2D its z row is zero.
+   * A 3 x 3 tensor; in 2D its z row is zero, and the caller adds the
+   * plane-strain zz entry (with_plane_strain_zz()).
    */
   dealii::SymmetricTensor<2, 3>
   lubrication_stress(const std::vector<Contact::LubricationBond> &bonds,
