@@ -136,7 +136,12 @@ namespace Fidus
     /// Fixed, or CFL-limited by the fastest particle (numerics section 5);
     /// then cut to the closing gaps (Time stepping/Gap step fraction).
     double
-    choose_time_step() const;
+    choose_time_step();
+    /// The velocities whose gaps the gap step follows: the fluid's rigid
+    /// velocities at the start of the step, corrected by the sub-grid
+    /// lubrication when it is on.
+    std::vector<RunState::Vec3>
+    gap_step_velocities();
     /// AB2 extrapolation of U / shear rate to the middle of the step.
     void
     extrapolate_velocities(double dt);
