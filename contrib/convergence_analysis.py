@@ -64,6 +64,37 @@ def parse_prm(text):
     return values
 
 
+# Set by the benchmark drivers in every run before their --set overrides:
+# quiet, no field output, no checkpoints.
+QUIET_RUN = [("Output/Verbosity", "quiet"), ("Output/Field output interval", "0"),
+             ("Output/Checkpoint interval", "0"), ("Output/Checkpoint wall interval", "0")]
+
+
+def prm_with(prm_text, overrides, output):
+    """The prm followed by 'subsection ... set ... end' blocks of the
+    (key, value) pairs in overrides and the Output directory: fidus, like
+    parse_prm(), takes the last value set."""
+    lines = [prm_text, "", "set Output directory = " + output]
+    for key, value in overrides:
+        parts = key.split("/")
+        lines += ["subsection " + p for p in parts[:-1]]
+        lines.append(f"set {parts[-1]} = {value}")
+        lines += ["end"] * (len(parts) - 1)
+    return "\n".join(lines) + "\n"
+
+
+def parse_overrides(items, prog):
+    """(key, value) pairs of --set 'Subsection/Entry=value' items; exits
+    with one message naming the bad item otherwise."""
+    pairs = []
+    for item in items:
+        if "=" not in item:
+            raise SystemExit(f"{prog}: --set '{item}': allowed: Subsection/Entry=value")
+        k, v = item.split("=", 1)
+        pairs.append((k.strip(), v.strip()))
+    return pairs
+
+
 def read_text(path):
     """Return the content of a file, or None if it cannot be read."""
     try:

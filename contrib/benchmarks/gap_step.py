@@ -26,7 +26,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "contrib"))
 from convergence_analysis import (  # noqa: E402
-    Geometry, max_trajectory_difference, parse_prm, read_particles, read_text)
+    QUIET_RUN, Geometry, max_trajectory_difference, parse_overrides, parse_prm, prm_with, read_particles,
+    read_text)
 
 
 class Run:
@@ -47,17 +48,6 @@ class Run:
             self.stats = list(csv.DictReader(f))[1:]
 
 
-def prm_with(prm_text, overrides, output):
-    """The prm followed by 'subsection ... set ... end' blocks."""
-    lines = [prm_text, "", "set Output directory = " + output]
-    for key, value in overrides:
-        parts = key.split("/")
-        lines += ["subsection " + p for p in parts[:-1]]
-        lines.append(f"set {parts[-1]} = {value}")
-        lines += ["end"] * (len(parts) - 1)
-    return "\n".join(lines) + "\n"
-
-
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("prm")
@@ -71,13 +61,7 @@ def main():
     p.add_argument("--fidus", default=os.environ.get("FIDUS", os.path.join(REPO, "build-release", "fidus")))
     args = p.parse_args()
 
-    common = [("Output/Verbosity", "quiet"), ("Output/Field output interval", "0"),
-              ("Output/Checkpoint interval", "0"), ("Output/Checkpoint wall interval", "0")]
-    for item in args.set:
-        if "=" not in item:
-            sys.exit(f"gap_step.py: --set '{item}': allowed: Subsection/Entry=value")
-        k, v = item.split("=", 1)
-        common.append((k.strip(), v.strip()))
+    common = QUIET_RUN + parse_overrides(args.set, "gap_step.py")
     fixed = sorted((float(x) for x in args.fixed.split(",")), reverse=True)
     runs = [Run(f"fixed {dt:g}", common + [("Time stepping/Time step", f"{dt:g}"),
                                            ("Time stepping/Gap step fraction", "0")],

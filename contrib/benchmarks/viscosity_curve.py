@@ -31,18 +31,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "contrib"))
-from convergence_analysis import parse_prm, read_text  # noqa: E402
-
-
-def prm_with(prm_text, overrides, output):
-    """The prm followed by 'subsection ... set ... end' blocks."""
-    lines = [prm_text, "", "set Output directory = " + output]
-    for key, value in overrides:
-        parts = key.split("/")
-        lines += ["subsection " + p for p in parts[:-1]]
-        lines.append(f"set {parts[-1]} = {value}")
-        lines += ["end"] * (len(parts) - 1)
-    return "\n".join(lines) + "\n"
+from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with  # noqa: E402
 
 
 def mean_and_error(values, batches=5):
@@ -72,13 +61,7 @@ def main():
     p.add_argument("--fidus", default=os.environ.get("FIDUS", os.path.join(REPO, "build-release", "fidus")))
     args = p.parse_args()
 
-    common = [("Output/Verbosity", "quiet"), ("Output/Field output interval", "0"),
-              ("Output/Checkpoint interval", "0"), ("Output/Checkpoint wall interval", "0")]
-    for item in args.set:
-        if "=" not in item:
-            sys.exit(f"viscosity_curve.py: --set '{item}': allowed: Subsection/Entry=value")
-        k, v = item.split("=", 1)
-        common.append((k.strip(), v.strip()))
+    common = QUIET_RUN + parse_overrides(args.set, "viscosity_curve.py")
     try:
         fractions = [float(x) for x in args.fractions.split(",")]
         first, last = (float(x) for x in args.window.split(","))
