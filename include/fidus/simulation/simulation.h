@@ -134,7 +134,8 @@ namespace Fidus
     bool
     finished() const;
     /// Fixed, or CFL-limited by the fastest particle (numerics section 5);
-    /// then cut to the closing gaps (Time stepping/Gap step fraction).
+    /// then cut to the closing and opening gaps (Time stepping/Gap step
+    /// fraction).
     double
     choose_time_step();
     /// The velocities whose gaps the gap step follows: the fluid's rigid
