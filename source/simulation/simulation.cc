@@ -433,7 +433,7 @@ namespace Fidus
 
   template <int dim>
   double
-  Simulation<dim>::choose_time_step()
+  Simulation<dim>::choose_time_step() const
   {
     double dt = prm.time_step;
     if (prm.adaptive_time_step)
@@ -449,12 +449,15 @@ namespace Fidus
       }
     if (gap_step)
       {
+        // The fluid's velocities, not the lubricated ones: below the mesh
+        // scale they close a gap up to 20 times faster than the
+        // correction lets the pair move, and that margin is what keeps a
+        // lubricated pair without a contact model from overlapping once
+        // its gap is below the floor, where nothing limits the step. With
+        // the lubricated velocities the steps were 3 to 6 times fewer,
+        // and such a pair overlapped (doc/results.md).
         dt = gap_step
-               ->limit(state.X,
-                       prm.radii,
-                       gap_step_velocities(),
-                       dt,
-                       &projector.glue_state())
+               ->limit(state.X, prm.radii, state.U, dt, &projector.glue_state())
                .dt;
         // AB2 extrapolates with dt / (2 dt_old): a step that more than
         // doubles after a closest approach would weigh the old velocities
@@ -469,40 +472,6 @@ namespace Fidus
     // bit-identically.
     const double remaining = prm.end_time - state.time;
     return dt <= remaining * (1. + 1e-9) ? dt : remaining;
-  }
-
-
-
-  template <int dim>
-  std::vector<RunState::Vec3>
-  Simulation<dim>::gap_step_velocities()
-  {
-    if (!lubrication)
-      return state.U;
-    // Below the mesh scale the fluid closes a gap as fast as the mesh lets
-    // it, up to 20 times faster than the correction then lets the pair
-    // move (doc/results.md, "A step that follows the gaps"), and a step cut
-    // to those speeds was that much too short. The correction of the
-    // start-of-step velocities at the present gaps is how the pair moves
-    // now; the resistance grows as the gap closes within the step. Its
-    // bonds are replaced by the step's own correction (add_lubrication()).
-    const double rate = shear(state.time);
-    lubrication->set_wall_velocity(
-      [this, rate](const Contact::Wall &wall, const Contact::Vec3 &point) {
-        return box.wall_velocity(wall, point, rate);
-      });
-    std::vector<RunState::Vec3> u, w;
-    try
-      {
-        lubrication->correct(state.X, prm.radii, state.U, state.W, u, w, 0.);
-      }
-    catch (const Contact::ContactError &e)
-      {
-        throw RunError(
-          std::string(e.what()) +
-          " (choosing the step after t = " + std::to_string(state.time) + ")");
-      }
-    return u;
   }
 
 

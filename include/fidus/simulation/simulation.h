@@ -137,12 +137,7 @@ namespace Fidus
     /// then cut to the closing and opening gaps (Time stepping/Gap step
     /// fraction).
     double
-    choose_time_step();
-    /// The velocities whose gaps the gap step follows: the fluid's rigid
-    /// velocities at the start of the step, corrected by the sub-grid
-    /// lubrication when it is on.
-    std::vector<RunState::Vec3>
-    gap_step_velocities();
+    choose_time_step() const;
     /// AB2 extrapolation of U / shear rate to the middle of the step.
     void
     extrapolate_velocities(double dt);
