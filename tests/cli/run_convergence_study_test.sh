@@ -10,29 +10,8 @@
 # Usage: run_convergence_study_test.sh path/to/fidus path/to/repo
 # FIDUS_KEEP=1 keeps the temporary folder; PYTHON picks the interpreter.
 # About 20 s on 2 idle cores (37 s with a build running beside it).
-set -u
-fidus="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-repo="$(cd "$2" && pwd)"
+. "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 driver="$repo/contrib/convergence_study.py"
-python="${PYTHON:-python3}"
-work="$(mktemp -d)"
-if [ "${FIDUS_KEEP:-0}" = 1 ]; then
-  echo "keeping $work"
-else
-  trap 'rm -rf "$work"' EXIT
-fi
-cd "$work"
-failures=0
-passes=0
-
-check() {  # check NAME COMMAND...: run COMMAND, report ok/FAILED
-  local name="$1"; shift
-  if "$@"; then
-    passes=$((passes + 1)); echo "ok: $name"
-  else
-    failures=$((failures + 1)); echo "FAILED: $name"
-  fi
-}
 
 # ---------------------------------------------------------------- bad input
 bad_input() {  # bad_input PATTERN ARGS...: exit status 1, one stderr line matching PATTERN

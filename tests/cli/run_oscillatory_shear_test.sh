@@ -14,24 +14,8 @@
 #     particles.csv; bad input gives one message and exit status 1.
 # Usage: run_oscillatory_shear_test.sh path/to/fidus path/to/repo
 # FIDUS_KEEP=1 keeps the temporary folder; PYTHON picks the interpreter.
-set -u
-fidus="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-repo="$(cd "$2" && pwd)"
+. "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 driver="$repo/contrib/oscillatory_shear.py"
-python="${PYTHON:-python3}"
-work="$(mktemp -d)"
-if [ "${FIDUS_KEEP:-0}" = 1 ]; then
-  echo "keeping $work"
-else
-  trap 'rm -rf "$work"' EXIT
-fi
-cd "$work"
-failures=0
-
-check() {  # check NAME COMMAND...: run COMMAND, report ok/FAILED
-  local name="$1"; shift
-  if "$@"; then echo "ok: $name"; else failures=$((failures + 1)); echo "FAILED: $name"; fi
-}
 
 cat > pair.prm <<'PRM'
 set Dimension = 2

@@ -11,24 +11,8 @@
 #  4. bad input (a fraction outside (0, 1), a bad --set, an empty window)
 #     gives one message and a non-zero exit status.
 # Usage: run_viscosity_curve_test.sh path/to/fidus path/to/repo
-set -u
-fidus="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-repo="$(cd "$2" && pwd)"
+. "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 driver="$repo/contrib/benchmarks/viscosity_curve.py"
-python="${PYTHON:-python3}"
-work="$(mktemp -d)"
-if [ "${FIDUS_KEEP:-0}" = 1 ]; then
-  echo "keeping $work"
-else
-  trap 'rm -rf "$work"' EXIT
-fi
-cd "$work"
-failures=0
-
-check() {  # check NAME COMMAND...: run COMMAND, report ok/FAILED
-  local name="$1"; shift
-  if "$@"; then echo "ok: $name"; else failures=$((failures + 1)); echo "FAILED: $name"; fi
-}
 
 cat > scene.prm <<'PRM'
 set Dimension = 2
