@@ -80,6 +80,22 @@ same_output() {
     same_stress "$1/statistics.csv" "$2/statistics.csv" 17-25
 }
 
+# Which part of same_output() differs, and its first differing lines: a
+# failure on a fresh machine is then readable from the CI log alone.
+explain_difference() {
+  cmp -s <(cut -d, -f1-13 "$1/particles.csv") <(cut -d, -f1-13 "$2/particles.csv") ||
+    { echo "  particles.csv, columns 1-13:"; diff <(cut -d, -f1-13 "$1/particles.csv") \
+        <(cut -d, -f1-13 "$2/particles.csv") | head -4; }
+  cmp -s <(cut -d, -f1-11,13-16 "$1/statistics.csv") <(cut -d, -f1-11,13-16 "$2/statistics.csv") ||
+    { echo "  statistics.csv, columns 1-11, 13-16:"; diff <(cut -d, -f1-11,13-16 "$1/statistics.csv") \
+        <(cut -d, -f1-11,13-16 "$2/statistics.csv") | head -4; }
+  same_stress "$1/particles.csv" "$2/particles.csv" 14-19 ||
+    echo "  particles.csv stresslets (14-19) beyond 1e-10"
+  same_stress "$1/statistics.csv" "$2/statistics.csv" 17-25 ||
+    echo "  statistics.csv stresses (17-25) beyond 1e-10"
+  no_duplicate_steps "$2" || echo "  $2/statistics.csv repeats or skips a step"
+}
+
 # Every step once, in order.
 no_duplicate_steps() {
   tail -n +2 "$1/statistics.csv" | cut -d, -f1 |
@@ -128,6 +144,7 @@ if same_output ref1 stop1 && no_duplicate_steps stop1 && [ "$(rows stop1/statist
   pass "1 rank: stopped and resumed run bit-identical to the uninterrupted one, every step once (partial last rows dropped)"
 else
   fail "1 rank: resumed output differs from the uninterrupted run"
+  explain_difference ref1 stop1
 fi
 if [ "$(grep -c DataSet stop1/particles.pvd)" = 7 ]; then
   pass "particles.pvd lists each of the 7 outputs once"
@@ -149,6 +166,7 @@ if same_output ref2 stop2 && no_duplicate_steps stop2; then
   pass "2 ranks: stopped and resumed run bit-identical to the uninterrupted one"
 else
   fail "2 ranks: resumed output differs from the uninterrupted run"
+  explain_difference ref2 stop2
 fi
 
 # --- 2. resumed on another number of ranks: same to solver tolerance -----
