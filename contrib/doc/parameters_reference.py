@@ -114,10 +114,11 @@ def markdown(entries):
         out.append("## %s\n" % (key if key else "Top level"))
         for path, name, default, doc in items:
             full = "/".join(path + [name])
-            shown = default if default else " "
-            out.append("**`%s`** = `%s`\n" % (full, shown))
+            shown = "`%s`" % default if default else "*(empty)*"
+            out.append("**`%s`** = %s\n" % (full, shown))
             if doc:
-                out.append(doc + "\n")
+                # A '*' of the documentation (u*, r * eta) is not emphasis.
+                out.append(doc.replace("*", "\\*") + "\n")
     return "\n".join(out).rstrip("\n") + "\n"
 
 
