@@ -10,7 +10,8 @@ case, punctuation other than '-' and '_' dropped, spaces to '-'). Links to
 http(s) addresses are not followed. Also checks that no page of doc/ cites
 a file outside the repository (../shared, design notes), and that every
 path `doc/....md` named in the sources, scripts, tests, parameter files and
-README exists (the pages that moved keep a page at their old path).
+README exists (the pages that moved keep a page at their old path), and
+that every scene prm/<name>.prm has its cookbook doc/cookbooks/<name>.md.
 """
 import os
 import re
@@ -74,6 +75,11 @@ def main():
                 if not os.path.exists(os.path.join(source, name)):
                     problems.append("%s: names %s, which does not exist"
                                     % (os.path.relpath(path, source), name))
+    for name in sorted(os.listdir(os.path.join(source, "prm"))):
+        if name.endswith(".prm"):
+            page = os.path.join("doc", "cookbooks", name[:-4] + ".md")
+            if not os.path.exists(os.path.join(source, page)):
+                problems.append("prm/%s has no cookbook page %s" % (name, page))
     for problem in problems:
         print("FAILED: " + problem)
     print("%d pages checked, %d broken links" % (len(pages), len(problems)))
