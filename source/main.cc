@@ -107,14 +107,6 @@ main(int argc, char **argv)
                       << parameters.n_particles() << " particles)\n";
           return 0;
         }
-      // The cut element's sparse direct solve is serial.
-      if (parameters.fluid_model == FluidModel::cut_finite_element &&
-          dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-        throw InputError(
-          "entry 'Fluid/Model' is 'cut finite element' on " +
-          std::to_string(
-            dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) +
-          " MPI ranks; allowed: 1 rank (its direct solver is serial)");
       // A resumed run checks its checkpoint before it writes anything.
       std::unique_ptr<Checkpoint::ResumePoint> resume_point;
       if (resume)
@@ -141,15 +133,10 @@ main(int argc, char **argv)
             resume_point = std::make_unique<Checkpoint::ResumePoint>(
               Checkpoint::find_and_check(parameters, false));
         }
-      if (root)
-        {
-          std::filesystem::create_directories(parameters.output_directory);
-          std::ofstream out(parameters.output_directory +
-                            "/used_parameters.prm");
-          out << used.str();
-        }
-      MPI_Barrier(MPI_COMM_WORLD);
-      const RunSummary summary = run_simulation(parameters, resume_point.get());
+      // The fluid model checks the scene against the machine (the number
+      // of ranks) before anything is written.
+      const RunSummary summary =
+        run_simulation(parameters, resume_point.get(), used.str());
       // Stopped by a signal after writing a checkpoint: the shell's
       // convention for a program ended by that signal (128 + number), so
       // that a job script sees that the End time was not reached.

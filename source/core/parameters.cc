@@ -228,9 +228,9 @@ namespace Fidus
     {
       const std::string model = prm.get("Model");
       fluid_model =
-        model == "fictitious domain" ? FluidModel::fictitious_domain :
-        model == "undisturbed shear" ? FluidModel::undisturbed_shear :
-                                       FluidModel::cut_finite_element;
+        model == "fictitious domain" ? FluidModelType::fictitious_domain :
+        model == "undisturbed shear" ? FluidModelType::undisturbed_shear :
+                                       FluidModelType::cut_finite_element;
       cut_minimum_gap       = prm.get_double("Cut minimum gap");
       cut_gap_cells         = prm.get_double("Cut gap cells");
       cut_linear_solver     = prm.get("Cut linear solver");
@@ -589,8 +589,8 @@ namespace Fidus
       gap_step_fraction      = prm.get_double("Gap step fraction");
       gap_step_floor         = prm.get_double("Gap step floor");
       time_scheme            = prm.get("Scheme") == "trapezoidal" ?
-                                 TimeScheme::trapezoidal :
-                                 TimeScheme::ab2;
+                                 TimeSchemeType::trapezoidal :
+                                 TimeSchemeType::ab2;
       trapezoidal_iterations = prm.get_integer("Trapezoidal iterations");
     }
     prm.leave_subsection();
@@ -666,18 +666,18 @@ namespace Fidus
     require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
 
     if (!external_forces.empty() &&
-        (fluid_model == FluidModel::undisturbed_shear ||
+        (fluid_model == FluidModelType::undisturbed_shear ||
          boundary_condition == BoundaryCondition::exact_rigid_inclusion))
       throw InputError(
         "entry 'Particles/External force' is set, but the fluid is " +
-        std::string(fluid_model == FluidModel::undisturbed_shear ?
+        std::string(fluid_model == FluidModelType::undisturbed_shear ?
                       "'Fluid/Model = undisturbed shear'" :
                       "the exact rigid inclusion") +
         "; allowed: external forces with 'Fluid/Model = fictitious "
         "domain' or 'cut finite element' and a boundary condition other "
         "than 'exact rigid inclusion'");
 
-    if (fluid_model == FluidModel::cut_finite_element)
+    if (fluid_model == FluidModelType::cut_finite_element)
       check_cut_finite_element();
 
     if (!(penalty_factor > 1.))
@@ -740,7 +740,7 @@ namespace Fidus
                        std::to_string(positions.size()) +
                        " particles; allowed: exactly one particle");
     if (boundary_condition == BoundaryCondition::exact_rigid_inclusion &&
-        fluid_model != FluidModel::fictitious_domain)
+        fluid_model != FluidModelType::fictitious_domain)
       throw InputError("entry 'Fluid/Model' is 'undisturbed shear' with the "
                        "'exact rigid inclusion' scene; allowed: 'fictitious "
                        "domain'");
@@ -867,7 +867,7 @@ namespace Fidus
                 lubrication_wall_tangential_range);
 
     // The held solid, radius a - c h at the finest cell size h, must exist.
-    if (fluid_model == FluidModel::fictitious_domain)
+    if (fluid_model == FluidModelType::fictitious_domain)
       {
         const double h = finest_cell_size();
         for (unsigned int i = 0; i < radii.size(); ++i)

@@ -29,11 +29,18 @@ namespace Fidus
     s << "step " << std::setw(6) << step << "  t = " << std::fixed
       << std::setprecision(4) << time << "  dt = " << std::scientific
       << std::setprecision(2) << dt << "  gap = " << gap << std::defaultfloat;
-    if (fluid)
-      s << "  cells " << cells << "  Uzawa " << uzawa << "  FGMRES " << fgmres
-        << "  rigidity " << std::scientific << std::setprecision(1)
+    // What the fluid model did: its mesh, then the Uzawa loop's
+    // iterations and residual where it has one.
+    if (cells > 0)
+      s << "  cells " << cells;
+    if (uzawa > 0)
+      s << "  Uzawa " << uzawa;
+    if (cells > 0)
+      s << "  FGMRES " << fgmres;
+    if (uzawa > 0)
+      s << "  rigidity " << std::scientific << std::setprecision(1)
         << rigidity_residual << std::defaultfloat;
-    if (fluid && shared > 0)
+    if (shared > 0)
       s << "  shared " << shared;
     s << "  contacts " << active << "/" << glued << "  ETA "
       << format_duration(eta);

@@ -22,7 +22,7 @@ namespace Fidus
   };
 
   /// How particle velocities are obtained (numerics section 6).
-  enum class FluidModel
+  enum class FluidModelType
   {
     fictitious_domain,
     undisturbed_shear,
@@ -42,7 +42,7 @@ namespace Fidus
   /// Screen verbosity.
   /// Time stepping/Scheme: how the positions advance (doc/results.md, "A
   /// time-symmetric scheme").
-  enum class TimeScheme
+  enum class TimeSchemeType
   {
     /// Adams-Bashforth 2 on the solved rigid velocities (the seed's).
     ab2,
@@ -113,11 +113,11 @@ namespace Fidus
     std::string           shear_rate         = "1";
 
     // Fluid
-    FluidModel   fluid_model        = FluidModel::fictitious_domain;
-    double       viscosity          = 1.;
-    double       penalty_factor     = 1e3;
-    unsigned int velocity_degree    = 2;
-    double       rigidity_tolerance = 5e-3;
+    FluidModelType fluid_model        = FluidModelType::fictitious_domain;
+    double         viscosity          = 1.;
+    double         penalty_factor     = 1e3;
+    unsigned int   velocity_degree    = 2;
+    double         rigidity_tolerance = 5e-3;
     /// Fluid/Rigidity measure = particle (false: box).
     bool rigidity_per_particle = true;
     /// Uzawa stop on the change of the rigid velocities (0: off).
@@ -200,13 +200,13 @@ namespace Fidus
     double roughness = 5e-3;
 
     // Time stepping
-    double       end_time               = 20.;
-    double       time_step              = 0.01;
-    bool         adaptive_time_step     = false;
-    double       cfl_number             = 0.5;
-    double       maximum_time_step      = 0.05;
-    TimeScheme   time_scheme            = TimeScheme::ab2;
-    unsigned int trapezoidal_iterations = 1;
+    double         end_time               = 20.;
+    double         time_step              = 0.01;
+    bool           adaptive_time_step     = false;
+    double         cfl_number             = 0.5;
+    double         maximum_time_step      = 0.05;
+    TimeSchemeType time_scheme            = TimeSchemeType::ab2;
+    unsigned int   trapezoidal_iterations = 1;
 
     /// Gap step fraction: the largest part of a gap one step may change (0:
     /// the step is not limited by gaps); Gap step floor: gaps below it

@@ -6,16 +6,16 @@
 namespace Fidus
 {
   /**
-   * One progress line on screen: step, time, Δt, smallest gap, and for the
-   * fictitious-domain fluid the cells, Uzawa and FGMRES iterations and the
-   * rigidity residual, then the active/glued contacts and the estimated
-   * time to finish.
+   * One progress line on screen: step, time, Δt, smallest gap, and what
+   * the fluid model reports (cells and FGMRES iterations where it has a
+   * mesh, Uzawa iterations and the rigidity residual where it has a
+   * rigidity multiplier, released cells when there are any), then the
+   * active/glued contacts and the estimated time to finish.
    */
   struct ProgressLine
   {
     unsigned int       step = 0;
     double             time = 0., dt = 0., gap = 0.;
-    bool               fluid = false;
     unsigned long long cells = 0;
     unsigned int       uzawa = 0, fgmres = 0;
     double             rigidity_residual = 0.;

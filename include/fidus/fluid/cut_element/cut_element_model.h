@@ -1,0 +1,77 @@
+#ifndef fidus_fluid_cut_element_cut_element_model_h
+#define fidus_fluid_cut_element_cut_element_model_h
+
+#include <deal.II/base/timer.h>
+#include <fidus/core/parameters.h>
+#include <fidus/core/warning_log.h>
+#include <fidus/fluid/fluid_model.h>
+#include <fidus/simulation/box_geometry.h>
+
+namespace Fidus
+{
+  /**
+   * `Fluid/Model = cut finite element`: Stokes outside the particles only,
+   * on a cut mesh built for every solve (CutStokesInclusion), with the
+   * particles' rigid motions as unknowns coupled by Nitsche's method. It
+   * has no accuracy floor and resolves thin gaps down to `Fluid/Cut
+   * minimum gap`; its solvers are serial, so it runs on one MPI rank
+   * (refused on more, naming the entry). Touching or overlapping
+   * particles, which the contact models allow, are seen by its fluid with
+   * radii reduced until every gap is the minimum gap.
+   */
+  template <int dim>
+  class CutElementModel : public FluidModel<dim>
+  {
+  public:
+    using typename FluidModel<dim>::Vec3;
+    using typename FluidModel<dim>::Statistics;
+    using typename FluidModel<dim>::SolveLabel;
+    using typename FluidModel<dim>::Stress;
+
+    /// Throws an InputError on more than one MPI rank. @p timer and
+    /// @p warnings must outlive the model.
+    CutElementModel(const Parameters       &prm,
+                    const BoxGeometry<dim> &box,
+                    dealii::TimerOutput    &timer,
+                    WarningLog             &warnings);
+
+    Statistics
+    rigid_velocities(const std::vector<Vec3> &X,
+                     double                   shear_rate,
+                     const SolveLabel        &label,
+                     std::vector<Vec3>       &U,
+                     std::vector<Vec3>       &W) override;
+
+    Stress
+    hydrodynamic_stress(double shear_rate) override;
+
+    double
+    cfl_length() const override;
+
+    bool
+    resolves_gap_flow() const override;
+
+    void
+    add_to_summary(RunSummary &summary) const override;
+
+  private:
+    /// The radius each particle's fluid sees at @p X: reduced so that every
+    /// gap, to a wall or to another particle, is at least Fluid/Cut
+    /// minimum gap (an overlap is a warning naming @p label).
+    std::vector<double>
+    fluid_radii(const std::vector<Vec3> &X, const SolveLabel &label) const;
+
+    const Parameters       &prm;
+    const BoxGeometry<dim> &box;
+    dealii::TimerOutput    &timer;
+    WarningLog             &warnings;
+    const unsigned int      n;
+
+    /// Stress, cells and unknowns of the last solve, and its shear rate.
+    Stress             last_stress;
+    unsigned long long last_cells = 0, last_dofs = 0;
+    double             solved_shear_rate = 0.;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,136 @@
+#ifndef fidus_fluid_fictitious_domain_fictitious_domain_model_h
+#define fidus_fluid_fictitious_domain_fictitious_domain_model_h
+
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <fidus/core/parameters.h>
+#include <fidus/core/warning_log.h>
+#include <fidus/fluid/boundary_velocity.h>
+#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <fidus/fluid/fluid_model.h>
+#include <fidus/fluid/stokes_solver.h>
+#include <fidus/io/field_output.h>
+#include <fidus/mesh/mesh_refiner.h>
+#include <fidus/particles/particle_force_density.h>
+#include <fidus/particles/solid_indicator.h>
+#include <fidus/simulation/box_geometry.h>
+#include <memory>
+
+namespace Fidus
+{
+  /**
+   * `Fluid/Model = fictitious domain`: Stokes on the whole box with a
+   * penalised viscosity inside the particles and a rigidity multiplier
+   * (Uzawa loop, StokesSolver), on a p4est mesh refined around the
+   * particle surfaces and the gaps between them (MeshRefiner). Each solve
+   * places the particles' solid (radii reduced by Fluid/Solid
+   * retraction), adapts the mesh if a particle moved by more than a
+   * fraction of the refined band, solves, and fits a rigid motion to the
+   * velocity in each particle. The mesh and the multiplier are its part of
+   * a checkpoint. With `Domain/Boundary condition = exact rigid inclusion`
+   * it also measures its error against the exact solution after its first
+   * solve.
+   */
+  template <int dim>
+  class FictitiousDomainModel : public FluidModel<dim>
+  {
+  public:
+    using typename FluidModel<dim>::Vec3;
+    using typename FluidModel<dim>::Statistics;
+    using typename FluidModel<dim>::SolveLabel;
+    using typename FluidModel<dim>::Stress;
+
+    /// The coarse mesh of @p box, globally refined unless the run
+    /// continues from a checkpoint (@p resuming: the checkpoint's forest
+    /// replaces it). @p timer and @p warnings must outlive the model.
+    FictitiousDomainModel(const Parameters       &prm,
+                          const BoxGeometry<dim> &box,
+                          bool                    resuming,
+                          dealii::TimerOutput    &timer,
+                          WarningLog             &warnings);
+    ~FictitiousDomainModel() override;
+
+    Statistics
+    rigid_velocities(const std::vector<Vec3> &X,
+                     double                   shear_rate,
+                     const SolveLabel        &label,
+                     std::vector<Vec3>       &U,
+                     std::vector<Vec3>       &W) override;
+
+    Stress
+    hydrodynamic_stress(double shear_rate) override;
+
+    double
+    cfl_length() const override;
+
+    bool
+    resolves_gap_flow() const override;
+
+    void
+    open_field_output(const std::string  &directory,
+                      const unsigned int *resumed_step) override;
+
+    void
+    write_fields(unsigned int step, double time) override;
+
+    void
+    save_checkpoint(const std::string &folder, RunState &state) override;
+
+    void
+    load_checkpoint(const std::string &folder, const RunState &state) override;
+
+    void
+    add_to_summary(RunSummary &summary) const override;
+
+  private:
+    /// Adapt the mesh to particles at @p X, unless they moved little since
+    /// the last remesh; true when the unknowns changed.
+    bool
+    refine_mesh_if_particles_moved(const std::vector<Vec3> &X);
+    /// The Uzawa loop's statistics; a loop that stopped short is a warning.
+    Statistics
+    solve_stokes(double shear_rate, const SolveLabel &label);
+    /// The rigid velocity (U, omega) of each particle from the velocity.
+    void
+    extract_rigid_motion(std::vector<Vec3> &U, std::vector<Vec3> &W);
+    /// The exact rigid inclusion's error norms, printed and kept for the
+    /// summary.
+    void
+    report_exact_solution_errors(const std::vector<Vec3> &U,
+                                 const std::vector<Vec3> &W);
+
+    const Parameters       &prm;
+    const BoxGeometry<dim> &box;
+    dealii::TimerOutput    &timer;
+    WarningLog             &warnings;
+    const unsigned int      n;
+    /// Radii of the held solid (Fluid/Solid retraction); the contact model
+    /// uses the particles' radii.
+    std::vector<double> solid_radii;
+
+    std::unique_ptr<dealii::parallel::distributed::Triangulation<dim>> tria;
+    std::unique_ptr<StokesSolver<dim>>                                 solver;
+    std::unique_ptr<MeshRefiner<dim>>                                  refiner;
+    std::unique_ptr<HydrodynamicStress<dim>> stress_integrator;
+    /// The exact solution of the 'exact rigid inclusion' scene (else null).
+    std::unique_ptr<ExactRigidInclusion<dim>> exact;
+    /// Body force of Particles/External force (null for force-free
+    /// particles).
+    std::unique_ptr<ParticleForceDensity<dim>> external_force;
+    std::unique_ptr<FieldOutput<dim>>          field_output;
+    BoundaryVelocity<dim>                      boundary;
+    SolidIndicator<dim>                        solid;
+
+    /// The shear rate of the last solve.
+    double solved_shear_rate = 0.;
+    /// Positions at the last remesh, and whether a mesh was adapted yet
+    /// (saved by checkpoints).
+    std::vector<Vec3> X_at_remesh;
+    bool              mesh_ready = false;
+    /// The exact scene's errors, once measured.
+    bool                  exact_reported = false;
+    std::array<double, 5> exact_errors{};
+  };
+} // namespace Fidus
+
+#endif
