@@ -56,18 +56,21 @@ check(const std::string       &what,
 {
   check_range(what + ": finite state", finite_state(s), 1, 1);
   check_range(what + ": minimum gap", s.min_gap, -tol, 1.);
+  // One Uzawa iteration in every case (measured, commit 256e7ce): the
+  // first solve already meets the rigidity tolerance; the cap is 20.
   check_range(what + ": largest Uzawa iterations",
               s.max_uzawa_iterations,
               1,
-              20);
-  // Per step, summed over the Uzawa iterations (each solve at most
-  // 1000 cheap + 1000 expensive iterations, else the run stops); none
-  // with the direct solver, the 2D default, whose residual is checked at
-  // every solve.
+              2);
+  // Per step, summed over the Uzawa iterations; none with the direct
+  // solver, the 2D default, whose residual is checked at every solve.
+  // With FGMRES at penalty 1e6 the cheap solve uses its 1000 iterations
+  // and the expensive one finishes in 1 (1001 measured): the bound says
+  // the fallback works, far below the cap of 20 x 2000.
   check_range(what + ": FGMRES iterations per step",
               s.max_linear_iterations,
               iterative ? 1 : 0,
-              iterative ? 20 * 2000 : 0);
+              iterative ? 1200 : 0);
 }
 
 int

@@ -42,11 +42,9 @@ main(int argc, char **argv)
   check_range("particles", s.positions.size(), 20, 100);
   check_range("finite state", finite_state(s), 1, 1);
   check_range("minimum gap", s.min_gap, -1e-9 * a, 1.);
-  check_range("largest Uzawa iterations", s.max_uzawa_iterations, 1, 10);
-  // Per step, summed over the Uzawa iterations (each solve at most 2000).
-  check_range("FGMRES iterations per step",
-              s.max_linear_iterations,
-              1,
-              10 * 2000);
+  // Measured (commit 256e7ce): 1 Uzawa iteration and 55 FGMRES
+  // iterations; the caps are 10 and 10 x 2000.
+  check_range("largest Uzawa iterations", s.max_uzawa_iterations, 1, 2);
+  check_range("FGMRES iterations per step", s.max_linear_iterations, 1, 90);
   return exit_code();
 }

@@ -1,0 +1,983 @@
+#include "cut_stokes_solve.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/non_matching/fe_immersed_values.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_level_set.h>
+#include <fidus/fluid/cut_saddle_point_solver.h>
+#include <fidus/fluid/rigid_mode.h>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace Fidus
+{
+  namespace
+  {
+    /// Throw std::invalid_argument: @p what is @p value, but must be
+    /// @p allowed.
+    [[noreturn]] void
+    refuse(const std::string &what,
+           const double       value,
+           const std::string &allowed)
+    {
+      throw std::invalid_argument("CutStokesInclusion: " + what + " is " +
+                                  std::to_string(value) +
+                                  "; allowed: " + allowed);
+    }
+  } // namespace
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::check_settings() const
+  {
+    if (particles.empty())
+      refuse("the number of particles", 0, ">= 1");
+    if (s.boundary == Boundary::exact_inclusion &&
+        (particles.size() != 1 || particles[0].force.norm() > 0.))
+      refuse("the number of particles of the exact inclusion",
+             particles.size(),
+             "one, force-free");
+    if (!(eta > 0.))
+      refuse("the viscosity", eta, "> 0");
+    if (!(s.nitsche > 0.))
+      refuse("the Nitsche parameter", s.nitsche, "> 0");
+    if (!(s.ghost_velocity >= 0.) || !(s.ghost_pressure >= 0.))
+      refuse("a ghost penalty",
+             std::min(s.ghost_velocity, s.ghost_pressure),
+             ">= 0 (0 leaves small cut pieces unstable)");
+    if (s.quadrature_points == 0)
+      refuse("the number of Gauss points", 0, ">= 1");
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      {
+        const auto &P = particles[k];
+        if (!(P.radius > 0.))
+          refuse("the radius of particle " + std::to_string(k),
+                 P.radius,
+                 "> 0");
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!is_periodic(d) &&
+              (P.center[d] - P.radius <= 0. || P.center[d] + P.radius >= 1.))
+            refuse("coordinate " + std::to_string(d) + " of particle " +
+                     std::to_string(k) + "'s centre",
+                   P.center[d],
+                   "the particle inside the unit box");
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::make_mesh()
+  {
+    std::vector<Point<dim>>         centers;
+    std::vector<double>             radii;
+    typename CutMesh<dim>::Settings mesh_settings;
+    for (const auto &P : particles)
+      {
+        centers.push_back(P.center);
+        radii.push_back(P.radius);
+      }
+    mesh_settings.global_level   = s.global_level;
+    mesh_settings.band_levels    = s.band_levels;
+    mesh_settings.band_cells     = s.band_cells;
+    mesh_settings.gap_cells      = s.gap_cells;
+    mesh_settings.max_gap_levels = s.max_gap_levels;
+    mesh_settings.periodic_axes  = periodic_axes;
+    mesh = std::make_unique<const CutMesh<dim>>(centers, radii, mesh_settings);
+    result.n_gap_refinements      = mesh->n_gap_refinements;
+    result.n_periodic_refinements = mesh->n_periodic_refinements;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::classify_cells()
+  {
+    dof_handler.reinit(mesh->get_triangulation());
+    result.h = 1.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        const Placement &here = placed(cell);
+        cell->set_active_fe_index(here.solid ? 1 : 0);
+        result.n_cut_cells += (!here.solid && here.n_cut > 0);
+        result.h = std::min(result.h, cell->extent_in_direction(0));
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::setup_dofs_and_constraints()
+  {
+    dof_handler.distribute_dofs(fe_collection);
+    n_fluid        = dof_handler.n_dofs();
+    n_total        = n_fluid + n_rigid * particles.size();
+    result.n_dofs  = n_total;
+    result.n_cells = mesh->get_triangulation().n_active_cells();
+
+    exact =
+      std::make_unique<const ExactRigidInclusion<dim>>(particles[0].center,
+                                                       particles[0].radius,
+                                                       g,
+                                                       eta);
+    const LinearShear    shear(g);
+    const Function<dim> &box_velocity =
+      s.boundary == Boundary::exact_inclusion ?
+        static_cast<const Function<dim> &>(*exact) :
+        static_cast<const Function<dim> &>(shear);
+
+    // The box takes the exact velocity (the faces are numbered 2d, 2d + 1
+    // for axis d), sliding walls only on y = 0, 1, with the periodic faces
+    // identified. One pressure value is pinned, since with the velocity
+    // given on every wall the pressure is fixed up to a constant.
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    for (unsigned int face = 0; face < 2 * dim; ++face)
+      if (!is_periodic(face / 2))
+        VectorTools::interpolate_boundary_values(dof_handler,
+                                                 face,
+                                                 box_velocity,
+                                                 constraints,
+                                                 fe_collection.component_mask(
+                                                   velocity));
+    mesh->make_periodicity_constraints(dof_handler, constraints);
+    {
+      const IndexSet pressure_dofs =
+        DoFTools::extract_dofs(dof_handler,
+                               fe_collection.component_mask(pressure));
+      for (const auto i : pressure_dofs)
+        if (!constraints.is_constrained(i))
+          {
+            constraints.add_line(i);
+            break;
+          }
+    }
+    constraints.close();
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::find_ghost_penalty_faces()
+  {
+    // The ghost-penalty faces: between two cells with fluid, at least one
+    // of them cut. Each face once: a conforming one from the cell of lower
+    // index, a hanging one from its finer side (the coarser cell's values
+    // are taken on the subface), a periodic one from its lower side.
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        {
+          if (cell->at_boundary(f) || cell->neighbor(f)->has_children())
+            continue;
+          const auto neighbour = cell->neighbor(f);
+          const bool coarser   = cell->neighbor_is_coarser(f);
+          if (!ghost_pair(cell, neighbour) ||
+              (!coarser && !(neighbour->index() > cell->index())))
+            continue;
+          GhostFace face{cell, neighbour, f, 0};
+          if (coarser)
+            {
+              const auto face_and_subface =
+                cell->neighbor_of_coarser_neighbor(f);
+              face.neighbour_face = face_and_subface.first;
+              face.subface        = face_and_subface.second;
+            }
+          else
+            face.neighbour_face = cell->neighbor_of_neighbor(f);
+          ghost_faces.push_back(face);
+        }
+    const Triangulation<dim> &tria = mesh->get_triangulation();
+    for (const auto &pair : mesh->periodic_neighbours())
+      {
+        const cell_iterator lower(&tria,
+                                  pair.lower_level,
+                                  pair.lower_index,
+                                  &dof_handler),
+          upper(&tria, pair.upper_level, pair.upper_index, &dof_handler);
+        if (!ghost_pair(lower, upper))
+          continue;
+        GhostFace face{lower, upper, 2 * pair.axis, 2 * pair.axis + 1};
+        face.shift[pair.axis] = -1.;
+        ghost_faces.push_back(face);
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::make_sparsity_pattern()
+  {
+    const auto            &balls = mesh->get_balls();
+    DynamicSparsityPattern dsp(n_total, n_total);
+    {
+      DynamicSparsityPattern fluid_dsp(n_fluid, n_fluid);
+      DoFTools::make_sparsity_pattern(dof_handler,
+                                      fluid_dsp,
+                                      constraints,
+                                      true);
+      for (unsigned int i = 0; i < n_fluid; ++i)
+        for (auto it = fluid_dsp.begin(i); it != fluid_dsp.end(i); ++it)
+          dsp.add(i, it->column());
+    }
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        const Placement &here = placed(cell);
+        const bool       cut  = here.n_cut > 0;
+        cell->get_dof_indices(dofs);
+        if (cut)
+          {
+            // Through the constraints: a hanging DoF of the cell passes its
+            // couplings on to the DoFs it hangs from, and a matrix entry
+            // missing from the pattern would be dropped without an error.
+            std::vector<types::global_dof_index> coupled = dofs;
+            for (unsigned int k = 0; k < n_rigid; ++k)
+              coupled.push_back(n_fluid + balls[here.ball].owner * n_rigid + k);
+            constraints.add_entries_local_to_global(coupled, dsp, true);
+          }
+      }
+    for (const GhostFace &face : ghost_faces)
+      {
+        face.cell->get_dof_indices(dofs);
+        face.neighbour->get_dof_indices(neighbour_dofs);
+        std::vector<types::global_dof_index> coupled = dofs;
+        for (const auto j : neighbour_dofs)
+          if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
+            coupled.push_back(j);
+        constraints.add_entries_local_to_global(coupled, dsp, true);
+      }
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int k = 0; k < n_rigid; ++k)
+        for (unsigned int l = 0; l < n_rigid; ++l)
+          dsp.add(n_fluid + p * n_rigid + k, n_fluid + p * n_rigid + l);
+    sparsity.copy_from(dsp);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::setup_system()
+  {
+    matrix.reinit(sparsity);
+    // Between sliding walls, the unconstrained matrix too: the walls'
+    // stress is the residual of their DoFs' rows, which the constrained
+    // matrix no longer has (the pattern holds the unconstrained entries).
+    if (periodic)
+      unconstrained.reinit(sparsity);
+    // The iterative solver's pressure preconditioner takes the pressure
+    // mass matrix over the fluid, on the pressures' own pattern.
+    iterative = s.linear_solver == LinearSolver::iterative ||
+                (s.linear_solver == LinearSolver::automatic && dim == 3 &&
+                 n_total > 40000);
+    for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
+      if (taylor_hood.system_to_component_index(k).first == dim)
+        pressure_shapes.push_back(k);
+    local_pressure.reinit(pressure_shapes.size(), pressure_shapes.size());
+    pressure_dof_indices.resize(pressure_shapes.size());
+    if (iterative)
+      {
+        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+        coupling[dim][dim] = DoFTools::always;
+        DynamicSparsityPattern mass_dsp(n_fluid, n_fluid);
+        DoFTools::make_sparsity_pattern(dof_handler,
+                                        coupling,
+                                        mass_dsp,
+                                        constraints,
+                                        true);
+        mass_sparsity.copy_from(mass_dsp);
+        pressure_mass.reinit(mass_sparsity);
+      }
+    rhs.reinit(n_total);
+    solution.reinit(n_total);
+
+    n_ext = n_local + n_rigid;
+    local.reinit(n_ext, n_ext);
+    local_rhs.reinit(n_ext);
+    ext_dofs.resize(n_ext);
+    // The external forces load the translations of the rigid unknowns.
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int d = 0; d < dim; ++d)
+        rhs(n_fluid + p * n_rigid + d) = particles[p].force[d];
+
+    eps.resize(n_local);
+    div.resize(n_local);
+    q_shape.resize(n_local);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_volume(const FEValues<dim> &fe_values)
+  {
+    // The fluid terms of one cell on the quadrature @p fe_values, with the
+    // shape functions' strain, divergence and pressure evaluated once per
+    // point rather than once per pair of them.
+    for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+      {
+        const double JxW = fe_values.JxW(q);
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            eps[i]     = fe_values[velocity].symmetric_gradient(i, q);
+            div[i]     = fe_values[velocity].divergence(i, q);
+            q_shape[i] = fe_values[pressure].value(i, q);
+          }
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            const SymmetricTensor<2, dim> e = 2. * eta * JxW * eps[i];
+            const double d = JxW * div[i], p = JxW * q_shape[i];
+            for (unsigned int j = 0; j < n_local; ++j)
+              local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
+          }
+        if (iterative)
+          for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+            for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+              local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
+                                      q_shape[pressure_shapes[b]] / eta;
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_nitsche(const cell_iterator &cell,
+                                   const Ball          &P,
+                                   const double         h)
+  {
+    const auto &q_surface = generator->get_surface_quadrature();
+    NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
+                                                         taylor_hood,
+                                                         q_surface,
+                                                         surface_flags);
+    fe_surface.reinit(cell);
+    const double gamma = s.nitsche * eta / h;
+    // Per extended index I: the trace of v - w_v, the traction's
+    // viscous part 2 eta eps(v) n and the pressure shape value.
+    std::vector<Tensor<1, dim>> jump(n_ext), traction(n_ext);
+    std::vector<double>         p_shape(n_ext);
+    for (unsigned int q = 0; q < q_surface.size(); ++q)
+      {
+        // The fluid's outward normal points into the particle.
+        const Tensor<1, dim> n = -fe_surface.normal_vector(q);
+        const Tensor<1, dim> r = fe_surface.quadrature_point(q) - P.center;
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            jump[i] = fe_surface[velocity].value(i, q);
+            traction[i] =
+              2. * eta * (fe_surface[velocity].symmetric_gradient(i, q) * n);
+            p_shape[i] = fe_surface[pressure].value(i, q);
+          }
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          {
+            jump[n_local + k]     = -rigid_mode<dim>(k, r);
+            traction[n_local + k] = Tensor<1, dim>();
+            p_shape[n_local + k]  = 0.;
+          }
+        const double JxW = fe_surface.JxW(q);
+        for (unsigned int i = 0; i < n_ext; ++i)
+          for (unsigned int j = 0; j < n_ext; ++j)
+            local(i, j) +=
+              (-traction[j] * jump[i] + p_shape[j] * (jump[i] * n) -
+               traction[i] * jump[j] + p_shape[i] * (jump[j] * n) +
+               gamma * jump[i] * jump[j]) *
+              JxW;
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::distribute_cell()
+  {
+    if (iterative)
+      {
+        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+          pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
+        constraints.distribute_local_to_global(local_pressure,
+                                               pressure_dof_indices,
+                                               pressure_mass);
+      }
+    if (periodic)
+      unconstrained.add(ext_dofs, local);
+    constraints.distribute_local_to_global(local,
+                                           local_rhs,
+                                           ext_dofs,
+                                           matrix,
+                                           rhs);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_cells()
+  {
+    const auto &balls = mesh->get_balls();
+    // A cell without a surface is a full square of its level's size, and
+    // its matrix depends on that size only: computed once per level.
+    std::map<int, FullMatrix<double>> fluid_cell_matrix, fluid_cell_mass;
+
+    q1d = std::make_unique<const hp::QCollection<1>>(
+      QGauss<1>(s.quadrature_points));
+    generator = std::make_unique<NonMatching::QuadratureGenerator<dim>>(*q1d);
+    FEValues<dim> fe_fluid(mapping,
+                           taylor_hood,
+                           q_cell,
+                           update_gradients | update_values |
+                             update_JxW_values);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        local          = 0.;
+        local_pressure = 0.;
+        local_rhs      = 0.;
+        cell->get_dof_indices(dofs);
+        std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
+        const Placement &here = placed(cell);
+        const auto      &P    = balls[here.ball];
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
+        if (here.n_cut == 0)
+          {
+            auto cached = fluid_cell_matrix.find(cell->level());
+            if (cached == fluid_cell_matrix.end())
+              {
+                fe_fluid.reinit(cell);
+                add_volume(fe_fluid);
+                cached = fluid_cell_matrix.emplace(cell->level(), local).first;
+                fluid_cell_mass.emplace(cell->level(), local_pressure);
+              }
+            else
+              {
+                local          = cached->second;
+                local_pressure = fluid_cell_mass[cell->level()];
+              }
+            distribute_cell();
+            continue;
+          }
+        const double h = cell->extent_in_direction(0);
+        generator->generate(
+          CutLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
+          unit_box);
+        const Quadrature<dim> &q_outside = generator->get_outside_quadrature();
+        if (q_outside.size() > 0)
+          {
+            FEValues<dim> fe_cut(mapping,
+                                 taylor_hood,
+                                 q_outside,
+                                 update_gradients | update_values |
+                                   update_JxW_values);
+            fe_cut.reinit(cell);
+            add_volume(fe_cut);
+          }
+        if (generator->get_surface_quadrature().size() > 0)
+          add_nitsche(cell, P, h);
+        distribute_cell();
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_ghost_penalties()
+  {
+    // Ghost penalties on the faces of cut cells. The two cells share the
+    // DoFs of their common face, so the face's unknowns are the union of
+    // both cells' (as FEInterfaceValues numbers them): a shared DoF's jump
+    // takes the contributions of both sides.
+    const QGauss<dim - 1> q_face(3);
+    const UpdateFlags     face_flags = update_gradients | update_hessians |
+                                   update_JxW_values | update_normal_vectors |
+                                   update_quadrature_points;
+    FEFaceValues<dim>    fe_face(mapping, taylor_hood, q_face, face_flags);
+    FEFaceValues<dim>    fe_neighbour(mapping, taylor_hood, q_face, face_flags);
+    FESubfaceValues<dim> fe_coarser(mapping, taylor_hood, q_face, face_flags);
+    std::vector<types::global_dof_index>     face_dofs;
+    std::vector<std::array<unsigned int, 2>> local_of(n_local);
+    FullMatrix<double>                       face_matrix;
+    Vector<double>                           face_rhs;
+    std::vector<Tensor<1, dim>>              d1, d2;
+    std::vector<double>                      dp;
+    for (const GhostFace &ghost : ghost_faces)
+      {
+        const auto &cell      = ghost.cell;
+        const auto &neighbour = ghost.neighbour;
+        const bool  coarser   = ghost.subface != numbers::invalid_unsigned_int;
+        fe_face.reinit(cell, ghost.face);
+        if (coarser)
+          fe_coarser.reinit(neighbour, ghost.neighbour_face, ghost.subface);
+        else
+          fe_neighbour.reinit(neighbour, ghost.neighbour_face);
+        const FEFaceValuesBase<dim> &fe_other =
+          coarser ? static_cast<const FEFaceValuesBase<dim> &>(fe_coarser) :
+                    static_cast<const FEFaceValuesBase<dim> &>(fe_neighbour);
+        cell->get_dof_indices(dofs);
+        neighbour->get_dof_indices(neighbour_dofs);
+        face_dofs = dofs;
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            local_of[i][0] = i;
+            const auto it =
+              std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
+            if (it != dofs.end())
+              local_of[i][1] = it - dofs.begin();
+            else
+              {
+                local_of[i][1] = face_dofs.size();
+                face_dofs.push_back(neighbour_dofs[i]);
+              }
+          }
+        const unsigned int n_face = face_dofs.size();
+        face_matrix.reinit(n_face, n_face);
+        // Across a hanging face, the mean of the two cells' sizes.
+        const double h = 0.5 * (cell->extent_in_direction(0) +
+                                neighbour->extent_in_direction(0));
+        for (unsigned int q = 0; q < q_face.size(); ++q)
+          {
+            if ((fe_face.quadrature_point(q) - fe_other.quadrature_point(q) -
+                 ghost.shift)
+                  .norm() > 1e-12 * h)
+              throw std::logic_error("CutStokesInclusion: face quadrature "
+                                     "points do not match");
+            const Tensor<1, dim> n = fe_face.normal_vector(q);
+            d1.assign(n_face, Tensor<1, dim>());
+            d2.assign(n_face, Tensor<1, dim>());
+            dp.assign(n_face, 0.);
+            for (unsigned int side = 0; side < 2; ++side)
+              {
+                const FEFaceValuesBase<dim> &fv =
+                  side == 0 ? fe_face : fe_other;
+                const double sign = side == 0 ? 1. : -1.;
+                for (unsigned int i = 0; i < n_local; ++i)
+                  {
+                    const unsigned int I    = local_of[i][side];
+                    const auto         grad = fv[velocity].gradient(i, q);
+                    const auto         hess = fv[velocity].hessian(i, q);
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        d1[I][c] += sign * (grad[c] * n);
+                        d2[I][c] += sign * (n * (hess[c] * n));
+                      }
+                    dp[I] += sign * (fv[pressure].gradient(i, q) * n);
+                  }
+              }
+            const double JxW = fe_face.JxW(q);
+            for (unsigned int i = 0; i < n_face; ++i)
+              for (unsigned int j = 0; j < n_face; ++j)
+                face_matrix(i, j) +=
+                  (s.ghost_velocity * eta *
+                     (h * d1[i] * d1[j] + h * h * h * d2[i] * d2[j]) -
+                   s.ghost_pressure / eta * h * h * h * dp[i] * dp[j]) *
+                  JxW;
+          }
+        if (periodic)
+          unconstrained.add(face_dofs, face_matrix);
+        // With the right-hand side: a face next to the box's boundary
+        // couples to DoFs with imposed velocity, whose values move to it.
+        face_rhs.reinit(n_face);
+        constraints.distribute_local_to_global(face_matrix,
+                                               face_rhs,
+                                               face_dofs,
+                                               matrix,
+                                               rhs);
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::scale_system()
+  {
+    const IndexSet pressure_dofs =
+      DoFTools::extract_dofs(dof_handler,
+                             fe_collection.component_mask(pressure));
+    is_pressure.assign(n_total, false);
+    for (const auto i : pressure_dofs)
+      is_pressure[i] = true;
+    scale.reinit(n_total);
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (!is_pressure[i])
+        {
+          const double d = std::abs(matrix.diag_element(i));
+          scale[i]       = d > 0. ? 1. / std::sqrt(d) : 1.;
+        }
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (is_pressure[i])
+        {
+          double schur = std::abs(matrix.diag_element(i));
+          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+            if (!is_pressure[it->column()])
+              schur += it->value() * it->value() * scale[it->column()] *
+                       scale[it->column()];
+          scale[i] = schur > 0. ? 1. / std::sqrt(schur) : 1.;
+        }
+    for (unsigned int i = 0; i < n_total; ++i)
+      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+        it->value() *= scale[i] * scale[it->column()];
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::solve_linear_system()
+  {
+    // The saddle-point system is solved directly, with MUMPS through
+    // Trilinos' Amesos (KLU where MUMPS is not available): UMFPACK, tried
+    // first, returned wrong solutions without an error above about 1.5e5
+    // unknowns. The residual is measured, since a factorisation that lost
+    // accuracy gives no error.
+    //
+    // A refined gap puts cells 1e-4 times smaller than the box's next to
+    // its coarse ones, and the pressure of a cell of size h couples with
+    // weight h^(dim-1) against viscous entries of order h^(dim-2): without
+    // scaling, the closing speed of a pair 1e-3 a apart (1e-3 of the
+    // particles' own speeds) was lost in round-off (sign changes between
+    // refinements, doc/cut_element.md). So the system is scaled
+    // symmetrically before the factorisation, velocity and rigid unknowns
+    // by their diagonal, pressures by the diagonal of B diag(A)^-1 B^T,
+    // and two steps of iterative refinement take the residual to round-off.
+    scale_system();
+
+    // Scaled: A' = D A D, b' = D b, x = D x'; A' r' = D (b - A x).
+    Vector<double> scaled_rhs(n_total), scaled_solution(n_total),
+      residual(n_total);
+    for (unsigned int i = 0; i < n_total; ++i)
+      scaled_rhs[i] = scale[i] * rhs[i];
+    if (iterative)
+      solve_iterative(scaled_rhs, scaled_solution, residual);
+    else
+      solve_direct(scaled_rhs, scaled_solution, residual);
+    double r2 = 0., b2 = 0.;
+    for (unsigned int i = 0; i < n_total; ++i)
+      {
+        solution[i] = scale[i] * scaled_solution[i];
+        r2 += std::pow(residual[i] / scale[i], 2);
+        b2 += rhs[i] * rhs[i];
+      }
+    result.residual = std::sqrt(r2 / b2);
+    constraints.distribute(solution);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::solve_iterative(const Vector<double> &scaled_rhs,
+                                       Vector<double>       &scaled_solution,
+                                       Vector<double>       &residual)
+  {
+    typename CutSaddlePointSolver<dim>::Layout layout;
+    layout.kind.assign(n_total, 2);
+    layout.constrained.assign(n_total, false);
+    layout.support_point.resize(n_total);
+    layout.component.assign(n_total, 0);
+    for (unsigned int i = 0; i < n_fluid; ++i)
+      {
+        layout.kind[i]        = is_pressure[i] ? 1 : 0;
+        layout.constrained[i] = constraints.is_constrained(i);
+      }
+    const auto &unit_points = taylor_hood.get_unit_support_points();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->active_fe_index() == 0)
+        {
+          cell->get_dof_indices(dofs);
+          const double h = cell->extent_in_direction(0);
+          for (unsigned int k = 0; k < n_local; ++k)
+            {
+              layout.support_point[dofs[k]] =
+                cell->vertex(0) + h * unit_points[k];
+              layout.component[dofs[k]] =
+                taylor_hood.system_to_component_index(k).first;
+            }
+        }
+    for (unsigned int i = 0; i < n_fluid; ++i)
+      for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
+        it->value() *= scale[i] * scale[it->column()];
+    std::unique_ptr<CutVelocityMultigrid<dim>> multigrid;
+    if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)
+      multigrid = std::make_unique<CutVelocityMultigrid<dim>>(
+        dof_handler,
+        constraints,
+        scale,
+        periodic_axes,
+        typename CutVelocityMultigrid<dim>::Settings());
+    CutSaddlePointSolver<dim> solver(matrix,
+                                     pressure_mass,
+                                     layout,
+                                     multigrid.get());
+    const auto                statistics = solver.solve(scaled_solution,
+                                         scaled_rhs,
+                                         s.iterative_tolerance,
+                                         s.iterative_max_iterations);
+    result.n_iterations                  = statistics.iterations;
+    result.n_setup_iterations            = statistics.setup_iterations;
+    matrix.vmult(residual, scaled_solution);
+    residual.sadd(-1., scaled_rhs);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::solve_direct(const Vector<double> &scaled_rhs,
+                                    Vector<double>       &scaled_solution,
+                                    Vector<double>       &residual)
+  {
+    TrilinosWrappers::SparseMatrix trilinos_matrix;
+    trilinos_matrix.reinit(matrix);
+    const IndexSet                all = complete_index_set(n_total);
+    TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF), b(all, MPI_COMM_SELF);
+    SolverControl                 control;
+    std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+    for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
+      try
+        {
+          direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+            control,
+            TrilinosWrappers::SolverDirect::AdditionalData(false, name));
+          direct->initialize(trilinos_matrix);
+          break;
+        }
+      catch (const ExceptionBase &)
+        {
+          direct.reset();
+        }
+    if (!direct)
+      throw std::runtime_error(
+        "CutStokesInclusion: the direct solvers (MUMPS, then KLU) failed; "
+        "the system is numerically singular (are the ghost penalties "
+        "zero?)");
+    residual = scaled_rhs;
+    for (unsigned int step = 0; step < 3; ++step)
+      {
+        for (unsigned int i = 0; i < n_total; ++i)
+          b[i] = residual[i];
+        direct->solve(x, b);
+        for (unsigned int i = 0; i < n_total; ++i)
+          scaled_solution[i] += x[i];
+        matrix.vmult(residual, scaled_solution);
+        residual.sadd(-1., scaled_rhs);
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::read_rigid_motion()
+  {
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        Tensor<1, dim> U;
+        Tensor<1, 3>   omega;
+        for (unsigned int d = 0; d < dim; ++d)
+          U[d] = solution(n_fluid + p * n_rigid + d);
+        for (unsigned int d = dim; d < n_rigid; ++d)
+          omega[dim == 2 ? 2 : d - dim] = solution(n_fluid + p * n_rigid + d);
+        result.velocity.push_back(U);
+        result.angular_velocity.push_back(omega);
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::measure_solution()
+  {
+    // What is measured on the solution, in one pass over the fluid cells
+    // (a cut cell's quadratures are generated once): the fluid's mean
+    // pressure, each particle's stresslet and, for the exact inclusion,
+    // the velocity error.
+    //
+    // The stresslet comes from the traction that the particle's rigid rows
+    // balance: with n the fluid's outward normal, the force on the
+    // particle is -int (sigma n - gamma (u - w)), the Nitsche flux, so
+    // that a force- and torque-free particle has a stresslet independent
+    // of the point its moments are taken about. The pressure is fixed up to
+    // a constant, which the stresslets must not see: they take it relative
+    // to the fluid's mean p_m, which is known only after the pass, so the
+    // pass sums the traction with the raw pressure and the moment
+    // int sym((x - X) (x) n) that -p_m n adds to it.
+    const auto &balls             = mesh->get_balls();
+    double      pressure_integral = 0., volume = 0., error2 = 0.;
+    std::vector<SymmetricTensor<2, dim>> normal_moment(particles.size());
+    result.stresslets.assign(particles.size(), SymmetricTensor<2, dim>());
+    Vector<double> exact_values(dim + 1);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        const Placement &here = placed(cell);
+        const auto      &P    = balls[here.ball];
+        cell->get_dof_indices(dofs);
+        Quadrature<dim> quadrature = q_cell;
+        if (here.n_cut > 0)
+          {
+            generator->generate(CutLevelSet<dim>(cell->vertex(0),
+                                                 cell->extent_in_direction(0),
+                                                 P.center,
+                                                 P.radius),
+                                unit_box);
+            quadrature = generator->get_outside_quadrature();
+          }
+        if (quadrature.size() > 0)
+          {
+            FEValues<dim> fe_values(mapping,
+                                    taylor_hood,
+                                    quadrature,
+                                    update_values | update_JxW_values |
+                                      update_quadrature_points);
+            fe_values.reinit(cell);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                double         p = 0.;
+                Tensor<1, dim> u;
+                for (unsigned int i = 0; i < n_local; ++i)
+                  {
+                    p += solution(dofs[i]) * fe_values[pressure].value(i, q);
+                    if (exact_case)
+                      u += solution(dofs[i]) * fe_values[velocity].value(i, q);
+                  }
+                pressure_integral += p * fe_values.JxW(q);
+                volume += fe_values.JxW(q);
+                if (exact_case)
+                  {
+                    exact->vector_value(fe_values.quadrature_point(q),
+                                        exact_values);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      u[d] -= exact_values[d];
+                    error2 += u.norm_square() * fe_values.JxW(q);
+                  }
+              }
+          }
+        if (here.n_cut == 0 || generator->get_surface_quadrature().size() == 0)
+          continue;
+        measure_surface(cell, P, normal_moment);
+      }
+    result.fluid_volume   = volume;
+    result.fluid_pressure = pressure_integral / volume;
+    for (unsigned int k = 0; k < particles.size(); ++k)
+      result.stresslets[k] -= result.fluid_pressure * normal_moment[k];
+    if (exact_case)
+      result.velocity_error =
+        std::sqrt(error2 / volume) / (g * particles[0].radius);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::measure_surface(
+    const cell_iterator                  &cell,
+    const Ball                           &P,
+    std::vector<SymmetricTensor<2, dim>> &normal_moment)
+  {
+    const auto        &q_surface = generator->get_surface_quadrature();
+    const unsigned int k         = P.owner;
+    NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
+                                                         taylor_hood,
+                                                         q_surface,
+                                                         surface_flags);
+    fe_surface.reinit(cell);
+    const double gamma = s.nitsche * eta / cell->extent_in_direction(0);
+    for (unsigned int q = 0; q < q_surface.size(); ++q)
+      {
+        const Tensor<1, dim>    n = -fe_surface.normal_vector(q);
+        const Tensor<1, dim>    r = fe_surface.quadrature_point(q) - P.center;
+        Tensor<1, dim>          u, w;
+        SymmetricTensor<2, dim> strain;
+        double                  p = 0.;
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            const double c = solution(dofs[i]);
+            u += c * fe_surface[velocity].value(i, q);
+            strain += c * fe_surface[velocity].symmetric_gradient(i, q);
+            p += c * fe_surface[pressure].value(i, q);
+          }
+        for (unsigned int m = 0; m < n_rigid; ++m)
+          w += solution(n_fluid + k * n_rigid + m) * rigid_mode<dim>(m, r);
+        const Tensor<1, dim> t =
+          -(2. * eta * (strain * n) - p * n - gamma * (u - w));
+        result.stresslets[k] +=
+          symmetrize(outer_product(r, t)) * fe_surface.JxW(q);
+        normal_moment[k] += symmetrize(outer_product(r, n)) * fe_surface.JxW(q);
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::wall_stress()
+  {
+    // The walls' stress, as a rheometer's walls feel it: with Phi a
+    // conforming test function that is e_a on one wall and vanishes off
+    // its first layer of cells (1 at the wall's DoFs of component a, both
+    // ends of the periodic wall included, hanging DoFs interpolated), the
+    // residual a(u, Phi) of the unconstrained rows is the wall's force
+    // int sigma n . e_a whenever the equations of all other DoFs hold: the
+    // same momentum balance the stresslets come from. The two agree as far
+    // as the cut cells' volume and surface quadratures obey the divergence
+    // theorem (int e(u) over the fluid against the surface terms): to
+    // round-off for most positions, to 1e-5 of the particles' stress at
+    // worst with 8 points (doc/cut_element.md, "Periodic faces").
+    for (unsigned int d = 0; d < dim; ++d)
+      result.top_wall_stress[d] = result.bottom_wall_stress[d] =
+        periodic ? 0. : std::numeric_limits<double>::quiet_NaN();
+    if (!periodic)
+      return;
+    AffineConstraints<double> hanging;
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    hanging.close();
+    Vector<double> residual(n_total);
+    unconstrained.vmult(residual, solution);
+    // Phi for each wall (side 0: y = 0, 1: y = 1) and component a, from
+    // one pass over the cells.
+    const auto &support = taylor_hood.get_unit_support_points();
+    std::array<std::array<Vector<double>, dim>, 2> phi;
+    for (auto &wall : phi)
+      for (auto &component : wall)
+        component.reinit(n_total);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (unsigned int side = 0; side < 2; ++side)
+        if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < n_local; ++i)
+              {
+                const unsigned int a =
+                  taylor_hood.system_to_component_index(i).first;
+                if (a < dim && std::abs(support[i][1] - side) < 1e-12)
+                  phi[side][a][dofs[i]] = 1.;
+              }
+          }
+    for (unsigned int side = 0; side < 2; ++side)
+      for (unsigned int a = 0; a < dim; ++a)
+        {
+          hanging.distribute(phi[side][a]);
+          // sigma e_y: the force on the top wall (n = e_y), minus the
+          // force on the bottom one.
+          const double force = phi[side][a] * residual;
+          if (side == 1)
+            result.top_wall_stress[a] = force;
+          else
+            result.bottom_wall_stress[a] = -force;
+        }
+    // The pressure relative to the fluid's mean, as in the stresslets:
+    // a constant c in p adds -c int div Phi = -c int Phi . n.
+    result.top_wall_stress[1] += result.fluid_pressure;
+    result.bottom_wall_stress[1] += result.fluid_pressure;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::exact_inclusion_errors()
+  {
+    if (!exact_case)
+      return;
+    // U is zero and omega = -g/2 e_z for the exact particle.
+    const double a     = particles[0].radius;
+    result.translation = result.velocity[0].norm() / (g * a);
+    result.omega_error =
+      std::abs(result.angular_velocity[0][2] + 0.5 * g) / (0.5 * g);
+    // The deviatoric part: the isotropic part depends on the pressure
+    // the moments are taken against, the fluid's mean here, which in a
+    // box around an off-centre particle differs from the far field's
+    // (zero) by O(a^2) of the pressure scale.
+    SymmetricTensor<2, dim> exact_stresslet;
+    exact_stresslet[0][1] = (dim == 2 ? 4. * numbers::PI * a * a :
+                                        20. / 3. * numbers::PI * a * a * a) *
+                            eta * 0.5 * g;
+    result.stresslet_error =
+      (deviator(result.stresslets[0]) - exact_stresslet).norm() /
+      exact_stresslet.norm();
+  }
+
+  template class CutStokesSolve<2>;
+  template class CutStokesSolve<3>;
+} // namespace Fidus

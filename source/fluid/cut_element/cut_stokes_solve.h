@@ -1,0 +1,373 @@
+#ifndef fidus_fluid_cut_element_cut_stokes_solve_h
+#define fidus_fluid_cut_element_cut_stokes_solve_h
+
+#include <algorithm>
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/fe_values_extractors.h>
+#include <deal.II/fe/mapping_cartesian.h>
+#include <deal.II/hp/fe_collection.h>
+#include <deal.II/hp/q_collection.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/non_matching/quadrature_generator.h>
+#include <fidus/fluid/cut_mesh.h>
+#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <memory>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * One solve of CutStokesInclusion, in named stages: the settings
+   * checked, the cut mesh built, its cells classified and the DoFs and
+   * constraints set up, the ghost-penalty faces found, the sparsity
+   * pattern and the matrices set up, the cells and the ghost penalties
+   * assembled, the scaled system solved (directly or iteratively), and the
+   * solution measured (the particles' motions, the mean pressure, the
+   * stresslets, the walls' stress and the exact inclusion's errors).
+   *
+   * What the stages share (mesh, DoFs, constraints, matrices, vectors,
+   * quadratures) is held as members; run() calls the stages in order and
+   * returns the Result. An object serves one solve: construct, run(),
+   * discard. The Settings passed to the constructor must outlive it.
+   */
+  template <int dim>
+  class CutStokesSolve
+  {
+  public:
+    using Settings = typename CutStokesInclusion<dim>::Settings;
+    using Result   = typename CutStokesInclusion<dim>::Result;
+
+    /// Start the clock and take the scene from @p settings (checked by
+    /// run(), not here).
+    explicit CutStokesSolve(const Settings &settings)
+      : s(settings)
+      , particles(settings.particles)
+      , eta(settings.viscosity)
+      , g(settings.shear_rate)
+      , periodic(settings.boundary == Boundary::sliding_walls)
+      , exact_case(settings.boundary == Boundary::exact_inclusion)
+      , taylor_hood(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1)
+      , nothing(FE_Nothing<dim>(), dim, FE_Nothing<dim>(), 1)
+      , fe_collection(taylor_hood, nothing)
+      , n_local(taylor_hood.n_dofs_per_cell())
+      , velocity(0)
+      , pressure(dim)
+      , mapping()
+      , dofs(n_local)
+      , neighbour_dofs(n_local)
+      , unit_box(create_unit_bounding_box<dim>())
+      , q_cell(3)
+      , surface_flags(update_values | update_gradients | update_JxW_values |
+                      update_quadrature_points | update_normal_vectors)
+    {
+      // Sliding walls: y has the walls, every other axis is periodic.
+      for (unsigned int d = 0; d < dim; ++d)
+        if (periodic && d != 1)
+          periodic_axes.push_back(d);
+    }
+
+    /// Check the settings, build the mesh, assemble, solve and measure:
+    /// the stages below, in order. Call once.
+    Result
+    run()
+    {
+      check_settings();
+      make_mesh();
+      classify_cells();
+      setup_dofs_and_constraints();
+      find_ghost_penalty_faces();
+      make_sparsity_pattern();
+      setup_system();
+      assemble_cells();
+      assemble_ghost_penalties();
+      solve_linear_system();
+      read_rigid_motion();
+      measure_solution();
+      wall_stress();
+      exact_inclusion_errors();
+      result.seconds = timer.wall_time();
+      return result;
+    }
+
+  private:
+    /// The box's velocity for a linear shear and sliding walls:
+    /// u = g (y - 1/2) e_x, p = 0.
+    class LinearShear : public Function<dim>
+    {
+    public:
+      explicit LinearShear(const double g)
+        : Function<dim>(dim + 1)
+        , g(g)
+      {}
+
+      double
+      value(const Point<dim> &x, const unsigned int component) const override
+      {
+        return component == 0 ? g * (x[1] - 0.5) : 0.;
+      }
+
+    private:
+      const double g;
+    };
+
+    using Particle     = typename CutStokesInclusion<dim>::Particle;
+    using Boundary     = typename CutStokesInclusion<dim>::Boundary;
+    using LinearSolver = typename CutStokesInclusion<dim>::LinearSolver;
+    using VelocityPreconditioner =
+      typename CutStokesInclusion<dim>::VelocityPreconditioner;
+    using Placement     = typename CutMesh<dim>::Placement;
+    using Ball          = typename CutMesh<dim>::Ball;
+    using cell_iterator = typename DoFHandler<dim>::active_cell_iterator;
+
+    /// A face that carries a ghost penalty: between two cells with fluid,
+    /// at least one of them cut.
+    struct GhostFace
+    {
+      cell_iterator  cell, neighbour;
+      unsigned int   face, neighbour_face;
+      unsigned int   subface = numbers::invalid_unsigned_int;
+      Tensor<1, dim> shift   = Tensor<1, dim>();
+    };
+
+    /// Rigid unknowns of a particle: dim translations and the rotations.
+    static constexpr unsigned int n_rigid = dim * (dim + 1) / 2;
+
+    /// @name The stages, in the order run() calls them.
+    /// @{
+
+    /// Throw std::invalid_argument, naming the value, for settings the
+    /// solver cannot take.
+    void
+    check_settings() const;
+
+    /// Build the cut mesh for the particles.
+    void
+    make_mesh();
+
+    /// Give the cells inside a particle no unknowns, and count the cut
+    /// cells and the finest cell size.
+    void
+    classify_cells();
+
+    /// Distribute the DoFs and set up the hanging-node, boundary,
+    /// periodicity and pressure constraints.
+    void
+    setup_dofs_and_constraints();
+
+    /// Collect the faces that carry a ghost penalty, each once.
+    void
+    find_ghost_penalty_faces();
+
+    /// The sparsity pattern of the fluid, rigid and ghost-penalty
+    /// couplings.
+    void
+    make_sparsity_pattern();
+
+    /// Size the matrices (the unconstrained one between sliding walls, the
+    /// pressure mass matrix for the iterative solver), the vectors and the
+    /// cell scratch, and load the particles' external forces.
+    void
+    setup_system();
+
+    /// Assemble the fluid cells: the volume terms and, on cut cells, the
+    /// Nitsche terms of the particle's surface.
+    void
+    assemble_cells();
+
+    /// Assemble the ghost penalties on the faces of cut cells.
+    void
+    assemble_ghost_penalties();
+
+    /// Scale the system symmetrically, solve it (directly or
+    /// iteratively), measure the residual and distribute the constraints.
+    void
+    solve_linear_system();
+
+    /// Each particle's velocity and angular velocity, from its rigid
+    /// unknowns.
+    void
+    read_rigid_motion();
+
+    /// The fluid's mean pressure and volume, each particle's stresslet
+    /// and, for the exact inclusion, the velocity error.
+    void
+    measure_solution();
+
+    /// For sliding walls, the mean stress the walls y = 0, 1 feel; NaN
+    /// otherwise.
+    void
+    wall_stress();
+
+    /// For the exact inclusion, the errors of the particle's motion and
+    /// stresslet.
+    void
+    exact_inclusion_errors();
+
+    /// @}
+
+    /// Whether axis @p d is periodic.
+    bool
+    is_periodic(const unsigned int d) const
+    {
+      return std::find(periodic_axes.begin(), periodic_axes.end(), d) !=
+             periodic_axes.end();
+    }
+
+    /// Where @p cell lies relative to the particles: every loop asks.
+    const Placement &
+    placed(const cell_iterator &cell) const
+    {
+      return mesh->placement(cell);
+    }
+
+    /// Whether the face between @p cell and @p neighbour carries a ghost
+    /// penalty: both have fluid, at least one is cut.
+    bool
+    ghost_pair(const cell_iterator &cell, const cell_iterator &neighbour) const
+    {
+      return cell->active_fe_index() == 0 &&
+             neighbour->active_fe_index() == 0 &&
+             (placed(cell).n_cut > 0 || placed(neighbour).n_cut > 0);
+    }
+
+    /// Add the fluid terms of one cell on the quadrature @p fe_values to
+    /// the cell matrix (and the pressure mass matrix for the iterative
+    /// solver).
+    void
+    add_volume(const FEValues<dim> &fe_values);
+
+    /// Add the Nitsche terms of the surface of ball @p P in the cut
+    /// @p cell of size @p h, on the generator's surface quadrature.
+    void
+    add_nitsche(const cell_iterator &cell, const Ball &P, const double h);
+
+    /// Add the cell matrix to the global ones (and the pressure mass
+    /// matrix for the iterative solver).
+    void
+    distribute_cell();
+
+    /// The symmetric diagonal scaling of the system, applied to the
+    /// matrix: velocity and rigid unknowns by their diagonal, pressures by
+    /// the diagonal of B diag(A)^-1 B^T.
+    void
+    scale_system();
+
+    /// The iterative solve of the scaled system: FGMRES with a block
+    /// preconditioner (CutSaddlePointSolver); @p residual is A' x' - b'.
+    void
+    solve_iterative(const Vector<double> &scaled_rhs,
+                    Vector<double>       &scaled_solution,
+                    Vector<double>       &residual);
+
+    /// The direct solve of the scaled system, MUMPS (KLU where it is
+    /// missing) with iterative refinement; @p residual is A' x' - b'.
+    void
+    solve_direct(const Vector<double> &scaled_rhs,
+                 Vector<double>       &scaled_solution,
+                 Vector<double>       &residual);
+
+    /// Add the moments of the traction on ball @p P over its surface in
+    /// the cut @p cell (on the generator's surface quadrature) to the
+    /// stresslet of its particle, and those of the normal to
+    /// @p normal_moment.
+    void
+    measure_surface(const cell_iterator                  &cell,
+                    const Ball                           &P,
+                    std::vector<SymmetricTensor<2, dim>> &normal_moment);
+
+    /// The clock of the whole solve.
+    Timer timer;
+    /// The scene and the discretisation's parameters.
+    const Settings &s;
+    /// The particles of the settings.
+    const std::vector<Particle> &particles;
+    /// Viscosity and shear rate.
+    const double eta, g;
+    /// Sliding walls; the exact inclusion.
+    const bool periodic, exact_case;
+    /// The periodic axes (every one but y between sliding walls).
+    std::vector<unsigned int> periodic_axes;
+    /// What the solve gives, filled stage by stage.
+    Result result;
+
+    /// The mesh, and where its cells lie.
+    std::unique_ptr<const CutMesh<dim>> mesh;
+    /// Taylor-Hood Q2-Q1 in the fluid, nothing inside the particles.
+    const FESystem<dim>         taylor_hood;
+    const FESystem<dim>         nothing;
+    const hp::FECollection<dim> fe_collection;
+    /// Shape functions of a fluid cell.
+    const unsigned int               n_local;
+    const FEValuesExtractors::Vector velocity;
+    const FEValuesExtractors::Scalar pressure;
+    const MappingCartesian<dim>      mapping;
+    DoFHandler<dim>                  dof_handler;
+    /// Fluid unknowns, and all of them (fluid and rigid).
+    unsigned int n_fluid = 0, n_total = 0;
+    /// The exact solution around the first particle.
+    std::unique_ptr<const ExactRigidInclusion<dim>> exact;
+    AffineConstraints<double>                       constraints;
+    std::vector<GhostFace>                          ghost_faces;
+    /// DoF indices of a cell and of its neighbour.
+    std::vector<types::global_dof_index> dofs, neighbour_dofs;
+
+    SparsityPattern      sparsity;
+    SparseMatrix<double> matrix;
+    /// Between sliding walls, the matrix without the constraints.
+    SparseMatrix<double> unconstrained;
+    /// Whether the system is solved iteratively.
+    bool iterative = false;
+    /// The pressure mass matrix over the fluid (iterative solver only).
+    SparsityPattern      mass_sparsity;
+    SparseMatrix<double> pressure_mass;
+    /// The pressure shape functions of a fluid cell.
+    std::vector<unsigned int> pressure_shapes;
+    Vector<double>            rhs, solution;
+
+    /// The cell scratch: matrix and right-hand side on the cell's shape
+    /// functions and its particle's rigid unknowns (extended indices), and
+    /// the pressure mass matrix with its DoFs.
+    unsigned int                         n_ext = 0;
+    FullMatrix<double>                   local;
+    Vector<double>                       local_rhs;
+    std::vector<types::global_dof_index> ext_dofs;
+    FullMatrix<double>                   local_pressure;
+    std::vector<types::global_dof_index> pressure_dof_indices;
+    /// Strain, divergence and pressure of each shape function at one
+    /// quadrature point.
+    std::vector<SymmetricTensor<2, dim>> eps;
+    std::vector<double>                  div, q_shape;
+
+    /// The cut cells' quadratures.
+    std::unique_ptr<const hp::QCollection<1>>              q1d;
+    std::unique_ptr<NonMatching::QuadratureGenerator<dim>> generator;
+    /// The unit box, the reference cell of the cut cells' level sets.
+    const BoundingBox<dim> unit_box;
+    /// The quadrature of a full cell.
+    const QGauss<dim> q_cell;
+    /// What the surface quadratures evaluate.
+    const UpdateFlags surface_flags;
+
+    /// Which unknowns are pressures, and the system's scaling.
+    std::vector<bool> is_pressure;
+    Vector<double>    scale;
+  };
+} // namespace Fidus
+
+#endif
