@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
-#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <random>
 #include <sstream>
 #include <string>

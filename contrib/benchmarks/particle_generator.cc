@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fidus/contact/contact_error.h>
-#include <fidus/contact/particle_generator.h>
+#include <fidus/particles/particle_generator.h>
 
 using namespace Fidus::Contact;
 

@@ -19,7 +19,7 @@ SIZES=${SIZES:-"1000 10000 100000"}
 FRACTIONS_2D=${FRACTIONS_2D:-"0.4 0.6"}
 FRACTIONS_3D=${FRACTIONS_3D:-"0.3 0.5"}
 nice -n 10 ${CXX:-g++} -O3 -std=c++17 -Iinclude -I/usr/include/eigen3 \
-  contrib/benchmarks/particle_generator.cc source/contact/*.cc -o "$BIN"
+  contrib/benchmarks/particle_generator.cc source/contact/*.cc source/lubrication/*.cc source/particles/*.cc -o "$BIN"
 
 echo "| dim | N | target | fraction reached | seconds | smallest gap / a_min | sweeps |"
 echo "|---|---|---|---|---|---|---|"

@@ -4,9 +4,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 #include <fidus/contact/contact_error.h>
-#include <fidus/contact/particle_generator.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
+#include <fidus/particles/particle_generator.h>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -665,17 +665,15 @@ namespace Fidus
     require_positive(rigidity_tolerance, "Fluid/Rigidity tolerance");
     require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
 
+    // The exact inclusion's boundary data are those of a force-free
+    // particle. Free-draining particles take a force over their isolated
+    // drag (UndisturbedShearModel).
     if (!external_forces.empty() &&
-        (fluid_model == FluidModelType::undisturbed_shear ||
-         boundary_condition == BoundaryCondition::exact_rigid_inclusion))
+        boundary_condition == BoundaryCondition::exact_rigid_inclusion)
       throw InputError(
-        "entry 'Particles/External force' is set, but the fluid is " +
-        std::string(fluid_model == FluidModelType::undisturbed_shear ?
-                      "'Fluid/Model = undisturbed shear'" :
-                      "the exact rigid inclusion") +
-        "; allowed: external forces with 'Fluid/Model = fictitious "
-        "domain' or 'cut finite element' and a boundary condition other "
-        "than 'exact rigid inclusion'");
+        "entry 'Particles/External force' is set with 'Domain/Boundary "
+        "condition = exact rigid inclusion'; allowed: external forces with "
+        "any other boundary condition");
 
     if (fluid_model == FluidModelType::cut_finite_element)
       check_cut_finite_element();

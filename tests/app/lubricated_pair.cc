@@ -30,8 +30,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fidus/contact/lubrication_correction.h>
 #include <fidus/core/parameters.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/simulation/simulation.h>
 #include <fstream>
 #include <map>

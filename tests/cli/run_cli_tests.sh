@@ -80,8 +80,8 @@ expect_error "external force count" "Particles/External force' has 3 forces for 
   "$(base | sed 's/  set Radius = 0.05/  set Radius = 0.05\n  set External force = 1, 0; 0, 1; 1, 1/')"
 expect_error "external force coordinates" "Particles/External force' has the value '1, 0, 0' with 3 coordinates; allowed: exactly 2" \
   "$(base | sed 's/  set Radius = 0.05/  set Radius = 0.05\n  set External force = 1, 0, 0/')"
-expect_error "external force without the fluid" "Particles/External force' is set, but the fluid is 'Fluid/Model = undisturbed shear'" \
-  "$(base; printf 'subsection Particles\n  set External force = 0, -1\nend\nsubsection Fluid\n  set Model = undisturbed shear\nend\n')"
+expect_error "external force on the exact inclusion" "Particles/External force' is set with 'Domain/Boundary condition = exact rigid inclusion'; allowed: external forces with any other boundary condition" \
+  "$(base; printf 'subsection Particles\n  set Positions = 0.5, 0.5\n  set External force = 0, -1\nend\nsubsection Domain\n  set Boundary condition = exact rigid inclusion\nend\n')"
 expect_error "lubrication range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 0\nend\n')"
 expect_error "lubrication wall range 0" "Fluid/Lubrication range' has the value 0.*allowed: a gap in finest cell sizes > 0" \

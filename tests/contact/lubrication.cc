@@ -59,7 +59,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fidus/contact/contact_error.h>
-#include <fidus/contact/lubrication_correction.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <iostream>
 #include <string>
 

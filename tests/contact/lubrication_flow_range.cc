@@ -30,7 +30,7 @@
 
 #include <array>
 #include <cmath>
-#include <fidus/contact/lubrication_correction.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <iostream>
 #include <string>
 

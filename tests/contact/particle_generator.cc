@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fidus/contact/contact_error.h>
-#include <fidus/contact/particle_generator.h>
+#include <fidus/particles/particle_generator.h>
 #include <limits>
 #include <string>
 

@@ -33,7 +33,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/core/parameters.h>
-#include <fidus/fluid/cell_block_preconditioner.h>
+#include <fidus/fluid/fictitious_domain/cell_block_preconditioner.h>
 #include <fidus/simulation/simulation.h>
 
 using namespace dealii;

@@ -27,7 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <stdexcept>
 
 using namespace FidusTest;

@@ -43,7 +43,7 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/numerics/vector_tools.h>
-#include <fidus/fluid/cut_velocity_multigrid.h>
+#include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
 #include <string>
 #include <tuple>
 #include <vector>

@@ -37,7 +37,7 @@
 #include "../fidus_test.h"
 
 #include <cmath>
-#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <stdexcept>
 
 using namespace FidusTest;

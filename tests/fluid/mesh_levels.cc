@@ -9,9 +9,9 @@
 #include "../fidus_test.h"
 
 #include <deal.II/distributed/tria.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/mesh/mesh_refiner.h>
-#include <fidus/particles/solid_indicator.h>
 #include <map>
 
 using namespace dealii;

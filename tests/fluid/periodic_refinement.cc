@@ -15,10 +15,10 @@
 
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <fidus/fluid/stokes_solver.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/mesh/mesh_refiner.h>
-#include <fidus/particles/solid_indicator.h>
 
 using namespace dealii;
 using namespace FidusTest;

@@ -25,7 +25,7 @@
 #include <cmath>
 #include <deal.II/base/quadrature_lib.h>
 #include <fidus/core/parameters.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
 #include <fidus/simulation/simulation.h>
 
 using namespace FidusTest;

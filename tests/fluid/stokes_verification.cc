@@ -16,8 +16,8 @@
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/vector.h>
-#include <fidus/fluid/stokes_solver.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fstream>
 
 using namespace dealii;

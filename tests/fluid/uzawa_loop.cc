@@ -20,7 +20,7 @@
 
 #include <deal.II/base/mpi.h>
 #include <fidus/core/input_error.h>
-#include <fidus/fluid/uzawa_loop.h>
+#include <fidus/fluid/fictitious_domain/uzawa_loop.h>
 #include <functional>
 #include <iostream>
 #include <string>

@@ -19,7 +19,7 @@
 #include "../fidus_test.h"
 
 #include <fidus/contact/contact_projector.h>
-#include <fidus/contact/lubrication_correction.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/rheology/contact_stress.h>
 #include <fidus/rheology/lubrication_stress.h>
 

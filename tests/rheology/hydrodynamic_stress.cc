@@ -15,8 +15,8 @@
 #include <deal.II/base/function.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
-#include <fidus/fluid/stokes_solver.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fidus/rheology/hydrodynamic_stress.h>
 
 using namespace FidusTest;

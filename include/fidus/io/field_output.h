@@ -1,8 +1,8 @@
 #ifndef fidus_io_field_output_h
 #define fidus_io_field_output_h
 
-#include <fidus/fluid/stokes_solver.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <string>
 #include <utility>
 #include <vector>

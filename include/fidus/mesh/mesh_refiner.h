@@ -2,7 +2,7 @@
 #define fidus_mesh_mesh_refiner_h
 
 #include <deal.II/distributed/tria.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
 
 namespace Fidus
 {

@@ -3,8 +3,8 @@
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
-#include <fidus/fluid/stokes_solver.h>
-#include <fidus/particles/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <set>
 #include <vector>
 

@@ -2,7 +2,7 @@
 #define fidus_rheology_lubrication_stress_h
 
 #include <deal.II/base/symmetric_tensor.h>
-#include <fidus/contact/lubrication_correction.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <vector>
 
 namespace Fidus

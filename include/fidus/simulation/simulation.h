@@ -4,13 +4,13 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 #include <fidus/contact/contact_projector.h>
-#include <fidus/contact/lubrication_correction.h>
 #include <fidus/core/parameters.h>
 #include <fidus/core/shear_rate.h>
 #include <fidus/core/warning_log.h>
 #include <fidus/fluid/fluid_model.h>
 #include <fidus/io/csv_writer.h>
 #include <fidus/io/particle_output.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/rheology/suspension_stress.h>
 #include <fidus/simulation/box_geometry.h>
 #include <fidus/simulation/checkpoint.h>

@@ -3,7 +3,7 @@
 #include <fidus/contact/pair_search.h>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/cut_element/cut_element_model.h>
-#include <fidus/fluid/cut_stokes_inclusion.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/rheology/plane_strain.h>
 #include <fidus/simulation/run_summary.h>
 #include <limits>

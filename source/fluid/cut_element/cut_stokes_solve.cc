@@ -11,9 +11,9 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <deal.II/numerics/vector_tools.h>
-#include <fidus/fluid/cut_level_set.h>
-#include <fidus/fluid/cut_saddle_point_solver.h>
-#include <fidus/fluid/rigid_mode.h>
+#include <fidus/fluid/cut_element/cut_level_set.h>
+#include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
+#include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <limits>
 #include <map>
 #include <stdexcept>

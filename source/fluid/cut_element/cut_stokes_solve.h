@@ -22,9 +22,9 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/non_matching/quadrature_generator.h>
-#include <fidus/fluid/cut_mesh.h>
-#include <fidus/fluid/cut_stokes_inclusion.h>
-#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <fidus/fluid/cut_element/cut_mesh.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
+#include <fidus/verification/exact_rigid_inclusion.h>
 #include <memory>
 #include <vector>
 

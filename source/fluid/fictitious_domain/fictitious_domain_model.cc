@@ -4,9 +4,9 @@
 #include <fidus/core/input_error.h>
 #include <fidus/core/shear_rate.h>
 #include <fidus/fluid/fictitious_domain/fictitious_domain_model.h>
+#include <fidus/fluid/fictitious_domain/rigid_motion.h>
 #include <fidus/mesh/box_mesh.h>
 #include <fidus/particles/isolated_drag.h>
-#include <fidus/particles/rigid_motion.h>
 #include <fidus/simulation/checkpoint.h>
 #include <fidus/simulation/run_state.h>
 #include <fidus/simulation/run_summary.h>

@@ -1,4 +1,5 @@
 #include <fidus/fluid/undisturbed/undisturbed_shear_model.h>
+#include <fidus/particles/isolated_drag.h>
 #include <limits>
 
 namespace Fidus
@@ -27,6 +28,16 @@ namespace Fidus
         U[i] = {{g * (X[i][1] - box.y_mid), 0., 0.}};
         W[i] = {{0., 0., -0.5 * g}};
       }
+    // An external force moves a free-draining particle relative to the
+    // flow at F over its isolated drag (6 pi eta a for a sphere, fidus's
+    // 4 pi eta for a disc); it exerts no torque.
+    if (!prm.external_forces.empty())
+      for (unsigned int i = 0; i < X.size(); ++i)
+        {
+          const double drag = isolated_drag(dim, prm.viscosity, prm.radii[i]);
+          for (unsigned int d = 0; d < dim; ++d)
+            U[i][d] += prm.external_forces[i][d] / drag;
+        }
     return Statistics();
   }
 

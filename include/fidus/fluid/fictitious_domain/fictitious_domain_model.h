@@ -6,14 +6,14 @@
 #include <fidus/core/parameters.h>
 #include <fidus/core/warning_log.h>
 #include <fidus/fluid/boundary_velocity.h>
-#include <fidus/fluid/exact_rigid_inclusion.h>
+#include <fidus/fluid/fictitious_domain/particle_force_density.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fidus/fluid/fluid_model.h>
-#include <fidus/fluid/stokes_solver.h>
 #include <fidus/io/field_output.h>
 #include <fidus/mesh/mesh_refiner.h>
-#include <fidus/particles/particle_force_density.h>
-#include <fidus/particles/solid_indicator.h>
 #include <fidus/simulation/box_geometry.h>
+#include <fidus/verification/exact_rigid_inclusion.h>
 #include <memory>
 
 namespace Fidus

@@ -11,7 +11,8 @@ namespace Fidus
    * `Fluid/Model = undisturbed shear`: free-draining particles, which
    * neither disturb the flow nor feel each other through it. Each moves
    * with the undisturbed shear flow at its centre, g (y - y_mid) e_x, and
-   * turns with its vorticity, -g/2 about z. No mesh and no solve: the
+   * turns with its vorticity, -g/2 about z; an external force F adds
+   * F over the isolated drag (isolated_drag()). No mesh and no solve: the
    * model of the contact tests and of scenes where only the contact model
    * matters. The stress is the undisturbed flow's viscous stress; the
    * particles carry none of their own.

@@ -1,0 +1,126 @@
+#ifndef fidus_fluid_cut_saddle_point_solver_h
+#define fidus_fluid_cut_saddle_point_solver_h
+
+#include <Epetra_MultiVector.h>
+#include <deal.II/base/point.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
+#include <memory>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The iterative solver of the cut finite element's system
+   * (CutStokesInclusion), for the sizes where a sparse direct factorisation
+   * is too slow (3D beyond a few tens of thousands of unknowns,
+   * doc/cut_element.md, "The iterative solver").
+   *
+   * The system is symmetric, with the fluid velocity u and the particles'
+   * rigid unknowns V (dim (dim + 1) / 2 each) forming a positive definite
+   * block K, coupled to the pressure p:
+   *
+   *   [ A_uu  A_uV  B_u^T ]
+   *   [ A_Vu  A_VV  B_V^T ]
+   *   [ B_u   B_V   -C    ]
+   *
+   * (C the pressure's ghost penalty). FGMRES runs on it with the upper
+   * block-triangular preconditioner [K B^T; 0 -S]^-1, where S is the
+   * pressure mass matrix over the fluid (divided by the viscosity) plus C,
+   * applied with one AMG cycle. K^-1 is, by default, one V-cycle of the
+   * geometric multigrid CutVelocityMultigrid on K, which carries the rigid
+   * unknowns through all its levels. Without it (VelocityPreconditioner::
+   * amg of CutStokesInclusion), K is inverted through its Schur complement
+   * on the rigid unknowns: W = A_uu^-1 A_uV is solved for once (one CG
+   * solve per rigid unknown) and S_V = A_VV - A_Vu W is a small dense
+   * matrix, so the rigid unknowns, which couple to every cut cell of their
+   * particle, never enter the AMG; one ML AMG cycle on A_uu (with the rigid
+   * motions as near-null space) stands for A_uu^-1 in each application.
+   */
+  template <int dim>
+  class CutSaddlePointSolver
+  {
+  public:
+    /// What each unknown of the system is.
+    struct Layout
+    {
+      /// 0: velocity, 1: pressure, 2: rigid.
+      std::vector<unsigned char> kind;
+      /// Unknowns fixed by constraints: their rows and columns hold the
+      /// diagonal only.
+      std::vector<bool> constrained;
+      /// For a velocity unknown: its support point and component (the
+      /// AMG's near-null space); unused for the others.
+      std::vector<Point<dim>>    support_point;
+      std::vector<unsigned char> component;
+    };
+
+    /// The cost of one solve.
+    struct Statistics
+    {
+      /// FGMRES iterations on the whole system.
+      unsigned int iterations = 0;
+      /// CG iterations summed over the solves for W.
+      unsigned int setup_iterations = 0;
+      /// Wall seconds: AMG setups and W; the FGMRES iterations.
+      double setup_seconds = 0., solve_seconds = 0.;
+    };
+
+    /**
+     * Set up for the (scaled) system @p matrix, with the pressure mass
+     * matrix @p pressure_mass (same numbering; only its pressure rows are
+     * read). Both must outlive the object. With @p multigrid, one V-cycle
+     * of it stands for A_uu^-1 (it is initialised here); without, one ML
+     * AMG cycle.
+     */
+    CutSaddlePointSolver(const SparseMatrix<double> &matrix,
+                         const SparseMatrix<double> &pressure_mass,
+                         const Layout               &layout,
+                         CutVelocityMultigrid<dim>  *multigrid = nullptr);
+
+    /**
+     * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b|| from x = 0.
+     * Throws std::runtime_error, naming the iterations and the residual
+     * reached, if that takes more than @p max_iterations.
+     */
+    Statistics
+    solve(Vector<double>       &x,
+          const Vector<double> &b,
+          const double          tolerance,
+          const unsigned int    max_iterations);
+
+    /// The preconditioner: dst = P^-1 src.
+    void
+    vmult(Vector<double> &dst, const Vector<double> &src) const;
+
+  private:
+    const SparseMatrix<double> &matrix;
+    /// Global indices of the velocity, pressure and rigid unknowns, and
+    /// each unknown's index within its kind.
+    std::vector<unsigned int> velocity, pressure, rigid, local;
+    SparsityPattern velocity_sparsity, pressure_sparsity, coupling_sparsity,
+      rigid_sparsity;
+    /// A_uu; S; B^T (rows: velocities, then rigid unknowns); A_Vu.
+    SparseMatrix<double> velocity_matrix, pressure_schur, coupling,
+      rigid_coupling;
+    TrilinosWrappers::SparseMatrix      velocity_trilinos, pressure_trilinos;
+    TrilinosWrappers::PreconditionAMG   velocity_amg, pressure_amg;
+    CutVelocityMultigrid<dim>          *multigrid;
+    std::unique_ptr<Epetra_MultiVector> null_space;
+    /// W = A_uu^-1 A_uV, one column per rigid unknown, and S_V^-1.
+    std::vector<Vector<double>> w;
+    FullMatrix<double>          rigid_schur_inverse;
+    Statistics                  statistics;
+    /// Work vectors of vmult.
+    mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product, r_v, z_v;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,473 @@
+#ifndef fidus_fluid_stokes_solver_h
+#define fidus_fluid_stokes_solver_h
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/solution_transfer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <fidus/fluid/fictitious_domain/direct_stokes_solver.h>
+#include <fidus/fluid/fictitious_domain/rigid_motion.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/uzawa_loop.h>
+#include <fidus/fluid/fictitious_domain/velocity_block.h>
+#include <memory>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The fluid predictor of fidus (numerics section 1): Stokes flow on the
+   * whole box, the solid given the viscosity r * eta_f, and a Lagrange
+   * multiplier lambda that enforces rigidity (epsilon(u) = 0 on the solid),
+   * found by the augmented-Lagrangian Uzawa loop
+   *
+   *   (2 eta e(u^k), e(v)) - (p^k, div v) = -(e(lambda^k), e(v))_solid,
+   *   (q, div u^k) = 0,
+   *   lambda^{k+1} = lambda^k + rho u^k,   rho = 2 (eta_s - eta_f).
+   *
+   * The penalised viscosity is the augmentation, so the matrix and its
+   * preconditioner are built once per solve and every Uzawa iteration is one
+   * FGMRES solve with a new right-hand side (warm-started from the previous
+   * iterate). Taylor-Hood Q(k)/Q(k-1) on a p4est mesh, Trilinos linear
+   * algebra, MPI parallel.
+   */
+  template <int dim>
+  class StokesSolver
+  {
+  public:
+    /// Solver settings (see Parameters for their meaning).
+    struct Settings
+    {
+      unsigned int degree             = 2;
+      double       viscosity          = 1.;
+      double       penalty_factor     = 1e3;
+      double       rigidity_tolerance = 1e-3;
+      /// Compare rigidity_tolerance with the per-particle rigidity
+      /// residual (UzawaProblem::Residual::particle) instead of the box's
+      /// (UzawaProblem::Residual::held).
+      bool rigidity_per_particle = false;
+      /// Uzawa stop on the particles' rigid velocities instead of the
+      /// strain in the solid (0: off; see solve()).
+      double rigid_velocity_tolerance = 0.;
+      /// A velocity scale of the particles' forced motion (external
+      /// forces; 0: none). The rigid velocity change is measured against
+      /// the larger of it and the box's shear: a scene driven by forces
+      /// alone has a small rms shear rate that would make the measure
+      /// unreachably strict.
+      double forced_velocity_scale = 0.;
+      /// Cells whose share of solid quadrature points is below this are
+      /// held rigid by the penalty alone, not by the multiplier (0: off).
+      double       sliver_threshold     = 0.;
+      unsigned int max_uzawa_iterations = 50;
+      double       linear_tolerance     = 1e-6;
+      /// Inexact Uzawa: the FGMRES solves inside the loop stop at this
+      /// factor times the loop's own tolerance (never below
+      /// linear_tolerance); the final velocity is then carried on to
+      /// linear_tolerance. 0: every solve to linear_tolerance.
+      double       inexact_uzawa_factor      = 0.;
+      unsigned int max_cheap_iterations      = 1000;
+      unsigned int max_linear_iterations     = 1000;
+      double       amg_aggregation_threshold = 0.;
+      unsigned int amg_smoother_sweeps       = 4;
+      std::string  amg_smoother_type         = "Chebyshev";
+      /// Factorise the system once per solve (DirectStokesSolver) instead
+      /// of FGMRES on meshes of at most this many unknowns (0: never); the
+      /// preconditioner settings are then unused.
+      unsigned long long direct_max_unknowns = 0;
+      /// Velocity-block preconditioner: geometric multigrid (true) or the
+      /// ML AMG.
+      bool         geometric_multigrid    = false;
+      unsigned int mg_smoother_degree     = 4;
+      std::string  mg_viscosity_averaging = "galerkin";
+      /// GMG smoother blocks: none or cut cells (VelocityMultigrid).
+      std::string mg_smoother_blocks = "cut cells";
+      /// With the geometric multigrid: multiply by the velocity block with
+      /// the finest level's matrix-free operator and do not assemble it
+      /// (false: assemble it as with the AMG).
+      bool matrix_free_velocity_block = true;
+      /// Correct each V-cycle with the particles' rigid motions
+      /// (RigidModeCorrection).
+      bool rigid_body_correction = true;
+      /// Krylov vectors kept by FGMRES before a restart.
+      unsigned int gmres_restart    = 200;
+      bool         reuse_multiplier = true;
+      /// Treat the solid part of shared cells (within half a cell diameter of
+      /// two particles) as fluid; false: the seed's model (rigid wherever
+      /// there is solid, which cannot be met there).
+      bool release_shared_cells = false;
+      /// Print one line per Uzawa iteration (rank 0).
+      bool verbose = false;
+    };
+
+    /// What one solve() did.
+    struct Statistics
+    {
+      unsigned int uzawa_iterations  = 0;
+      unsigned int linear_iterations = 0; ///< outer FGMRES, summed
+      unsigned int inner_iterations  = 0; ///< inner CG of expensive mode
+      unsigned int expensive_solves  = 0;
+      /// The rigidity residual in the measure the Uzawa loop stops on
+      /// (Settings::rigidity_per_particle): UzawaProblem::Residual::held
+      /// or UzawaProblem::Residual::particle.
+      double rigidity_residual = 0.;
+      /// UzawaProblem::Residual::particle of the last iteration, whatever the
+      /// measure.
+      double particle_rigidity_residual = 0.;
+      /// Largest change of a particle's rigid velocity in the last Uzawa
+      /// iteration, |dU|/(g a) or |d omega|/g with g the box's rms shear
+      /// rate sqrt(2 <e(u):e(u)>); NaN after a single iteration.
+      double rigid_velocity_change = 0.;
+      /// Cells whose solid was released (Settings::release_shared_cells),
+      /// and the rigidity residual of the solid in them (reported only).
+      unsigned int shared_cells    = 0;
+      double       shared_residual = 0.;
+      bool         uzawa_converged = true;
+      /// The Uzawa loop stopped early: no progress (see solve()).
+      bool   uzawa_stalled    = false;
+      double assemble_seconds = 0.;
+      double setup_seconds    = 0.; ///< AMG and Jacobi set-up
+      double solve_seconds    = 0.;
+      /// Part of solve_seconds spent in the Uzawa loop's passes over the
+      /// solid (multiplier load, rigidity residual, rigid motions).
+      double solid_pass_seconds = 0.;
+    };
+
+    /// Error norms against an exact solution.
+    struct Errors
+    {
+      double u_l2 = 0., u_h1 = 0., p_l2 = 0.;
+      /// L2 norm of the exact velocity on the same region (for relative
+      /// errors).
+      double u_l2_norm = 0.;
+    };
+
+    /// Work on @p triangulation (owned by the caller).
+    StokesSolver(parallel::distributed::Triangulation<dim> &triangulation,
+                 const Settings                            &settings);
+    ~StokesSolver();
+
+    /**
+     * Distribute DoFs and build sparsity patterns for the current mesh.
+     * @p periodic_directions: axes whose faces (boundary ids 2k, 2k+1) are
+     * periodic; @p dirichlet_ids: boundary ids with imposed velocity.
+     */
+    void
+    setup_dofs(const std::vector<unsigned int>    &periodic_directions,
+               const std::set<types::boundary_id> &dirichlet_ids);
+
+    /**
+     * Solve for the given solid region and boundary velocity (a function of
+     * dim+1 components). Optional: a body force (dim+1 components) and a
+     * variable fluid viscosity (scalar) used by verification tests.
+     */
+    Statistics
+    solve(const SolidIndicator<dim> &solid,
+          const Function<dim>       &boundary_velocity,
+          const Function<dim>       *body_force      = nullptr,
+          const Function<dim>       *fluid_viscosity = nullptr);
+
+    /**
+     * Errors of the current solution against @p exact (dim+1 components):
+     * L2 and H1-seminorm of u and L2 of p (both pressures with zero mean),
+     * integrated on the fluid part only when @p fluid_only is set.
+     */
+    Errors
+    compute_errors(const Function<dim>       &exact,
+                   const SolidIndicator<dim> &solid,
+                   const bool                 fluid_only) const;
+
+    /// The DoF handler (velocity components first, then pressure).
+    const DoFHandler<dim> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+
+    /// The settings in use.
+    const Settings &
+    get_settings() const
+    {
+      return settings;
+    }
+
+    /**
+     * The viscosity at a point of solid fraction @p phi (SolidIndicator::
+     * fraction()) where the fluid's is @p eta_f: eta_f outside, r eta_f
+     * inside, and between them, in a smoothed solid's layer, the
+     * arithmetic mix eta_f (1 + (r - 1) phi), as the multiplier's load is
+     * weighted by phi: the penalty and the multiplier then act on the same
+     * weighted strain. The assembly, the multigrid levels and the stress
+     * all use it.
+     */
+    double
+    solid_viscosity(const double eta_f, const double phi) const
+    {
+      return phi == 0. ? eta_f :
+             phi == 1. ? settings.penalty_factor * eta_f :
+                         eta_f * (1. + (settings.penalty_factor - 1.) * phi);
+    }
+
+    /**
+     * The hanging-node and periodicity constraints of the current mesh,
+     * without the imposed velocity (closed, on the locally relevant DoFs):
+     * the conforming space, for residuals at DoFs with imposed velocity.
+     * Built by setup_dofs().
+     */
+    const AffineConstraints<double> &
+    get_conforming_constraints() const
+    {
+      return conforming_constraints;
+    }
+
+    /// The finite element.
+    const FESystem<dim> &
+    get_fe() const
+    {
+      return fe;
+    }
+
+    /// The solution with ghost entries (block 0: u, block 1: p).
+    const TrilinosWrappers::MPI::BlockVector &
+    get_solution() const
+    {
+      return solution;
+    }
+
+    /// The rigidity multiplier with ghost entries (block 0).
+    const TrilinosWrappers::MPI::BlockVector &
+    get_multiplier() const
+    {
+      return multiplier;
+    }
+
+    /// Quadrature used for assembly, the indicator and particle integrals.
+    const QGauss<dim> &
+    get_quadrature() const
+    {
+      return quadrature;
+    }
+
+    /// Total number of DoFs.
+    types::global_dof_index
+    n_dofs() const
+    {
+      return dof_handler.n_dofs();
+    }
+
+    /**
+     * With Preconditioner = GMG: the largest
+     * VelocityMultigrid::galerkin_defect() of any preconditioner set-up so
+     * far (round-off with Multigrid viscosity averaging = galerkin); else 0.
+     */
+    double
+    multigrid_galerkin_defect() const
+    {
+      return worst_galerkin_defect;
+    }
+
+    /// Locally owned and ghost cells in mesh order (canonical_cell_order),
+    /// for sums over cells that must not depend on the refinement history.
+    const std::vector<typename DoFHandler<dim>::active_cell_iterator> &
+    get_cells() const
+    {
+      return cells;
+    }
+
+    /// Per active cell (active_cell_index): whether the last solve treated
+    /// its solid part as fluid (a shared cell).
+    const std::vector<bool> &
+    get_shared_cells() const
+    {
+      return shared;
+    }
+
+    /// Invalidate the multiplier warm start (the solid moved).
+    void
+    reset_multiplier();
+
+    /// Whether the multiplier is the warm start of the next solve.
+    bool
+    multiplier_is_valid() const
+    {
+      return multiplier_valid;
+    }
+
+    /**
+     * Attach the multiplier to the triangulation, so that the next
+     * triangulation.save() stores it with the mesh (a checkpoint). Call
+     * finish_checkpoint() after the save.
+     */
+    void
+    prepare_for_checkpoint();
+
+    /// Release what prepare_for_checkpoint() attached.
+    void
+    finish_checkpoint();
+
+    /**
+     * After triangulation.load() of a checkpoint: distribute DoFs as
+     * setup_dofs() does and read the multiplier back. It is the next
+     * solve's warm start if @p multiplier_is_warm_start (as it was when
+     * saved). On the same number of ranks the DoF numbering, and therefore
+     * every later number, is the same as in the run that wrote it.
+     */
+    void
+    load_from_checkpoint(const std::vector<unsigned int> &periodic_directions,
+                         const std::set<types::boundary_id> &dirichlet_ids,
+                         bool multiplier_is_warm_start);
+
+  private:
+    /// Add the hanging-node and periodicity constraints to @p c.
+    void
+    add_conforming_constraints(AffineConstraints<double> &c) const;
+    /// Hanging nodes, periodicity and the boundary velocity.
+    void
+    make_constraints(const Function<dim> &boundary_velocity);
+    void
+    assemble_system(const SolidIndicator<dim> &solid,
+                    const Function<dim>       *body_force,
+                    const Function<dim>       *fluid_viscosity);
+    void
+    assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
+    /// The strain the current solution leaves in the solid
+    /// (UzawaProblem::Residual).
+    UzawaProblem::Residual
+    rigidity_residual(const SolidIndicator<dim> &solid) const;
+    /// The solver seen as the problem UzawaLoop iterates on
+    /// (stokes_solver_uzawa.cc).
+    class Uzawa;
+    /// One FGMRES solve of the current system, from zero, to @p tolerance
+    /// (relative to the right-hand side).
+    unsigned int
+    solve_linear(Statistics &stats, double tolerance);
+    /// After assemble_system(): the Jacobi of the pressure mass, the velocity
+    /// V-cycle (AMG, or the new viscosity of the GMG levels) and the
+    /// rigid-body correction (stokes_solver_preconditioners.cc).
+    void
+    setup_preconditioners(const SolidIndicator<dim> &solid,
+                          const Function<dim>       *fluid_viscosity);
+    /// The rigid motions of every particle on the DoFs of its solid, for
+    /// the velocity preconditioner (after assemble_system()).
+    void
+    build_rigid_body_correction(const SolidIndicator<dim> &solid);
+    /// One FGMRES solve with @p velocity as the velocity-block
+    /// preconditioner.
+    template <class VelocityPreconditioner>
+    unsigned int
+    solve_linear(Statistics                   &stats,
+                 const VelocityPreconditioner &velocity,
+                 double                        tolerance);
+    /// Whether the solid of @p cell is released
+    /// (Settings::release_shared_cells): within half a cell diameter of two
+    /// particles (@p candidates: the particles near the cell), or touching a
+    /// face with imposed velocity.
+    bool
+    is_shared_cell(const SolidIndicator<dim>                        &solid,
+                   const typename Triangulation<dim>::cell_iterator &cell,
+                   const std::vector<unsigned int> &candidates) const;
+    /// The viscosity at @p points of a cell (of any mesh) near the
+    /// particles @p candidates: r eta_f in the solid unless the cell is
+    /// shared, eta_f elsewhere. Returns whether a point is in the solid.
+    /// The assembly and the multigrid levels both use it.
+    bool
+    viscosity_at(const SolidIndicator<dim>       &solid,
+                 const Function<dim>             *fluid_viscosity,
+                 const std::vector<unsigned int> &candidates,
+                 bool                             shared_cell,
+                 const std::vector<Point<dim>>   &points,
+                 std::vector<double>             &eta) const;
+    void
+    make_pressure_rhs_consistent();
+    /// Whether the velocity block is assembled into system_matrix (not
+    /// when the geometric multigrid applies it without a matrix).
+    bool
+    velocity_block_assembled() const;
+    /// Without an assembled velocity block: base_rhs -= C^T A g, the load
+    /// of the boundary values that the assembly leaves out.
+    void
+    subtract_constraint_load();
+
+    MPI_Comm                                   mpi_communicator;
+    parallel::distributed::Triangulation<dim> &triangulation;
+    const Settings                             settings;
+    FESystem<dim>                              fe;
+    DoFHandler<dim>                            dof_handler;
+    QGauss<dim>                                quadrature;
+
+    /// Locally owned and ghost cells in mesh order (canonical_cell_order):
+    /// every loop that adds up over cells runs in this order.
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+
+    /// Per locally owned velocity DoF: the solid entry (SolidIndicator) of
+    /// the cells that hold it rigid, or -1.
+    std::vector<int> solid_entry_of_dof;
+    /// See multigrid_galerkin_defect().
+    double worst_galerkin_defect = 0.;
+
+    /// Shared cells of the last assembly, and how many (all ranks).
+    std::vector<bool> shared;
+    /// Per active cell: its solid is a sliver (a share of its quadrature
+    /// points below Settings::sliver_threshold), held by the penalty alone,
+    /// without the multiplier.
+    std::vector<bool> sliver;
+    unsigned int      n_shared_cells = 0;
+    /// Whether system_matrix holds B and B^T of the current mesh, to be
+    /// kept (the velocity block is matrix-free, so nothing else in it
+    /// moves with the particles); reset by setup_dofs().
+    bool coupling_assembled = false;
+
+    std::vector<unsigned int>    periodic_directions;
+    std::set<types::boundary_id> dirichlet_ids;
+    std::vector<IndexSet>        owned_partitioning, relevant_partitioning;
+    IndexSet                     locally_relevant_dofs;
+    AffineConstraints<double>    constraints;
+    /// Hanging nodes and periodicity only (get_conforming_constraints()).
+    AffineConstraints<double> conforming_constraints;
+
+    TrilinosWrappers::BlockSparseMatrix system_matrix;
+    TrilinosWrappers::BlockSparseMatrix preconditioner_matrix;
+    TrilinosWrappers::MPI::BlockVector  base_rhs, rhs;
+    TrilinosWrappers::MPI::BlockVector  distributed_solution;
+    TrilinosWrappers::MPI::BlockVector  solution;
+    TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
+    TrilinosWrappers::MPI::BlockVector  solid_mask;
+    bool                                multiplier_valid = false;
+    /// Whether the current mesh is solved with the geometric multigrid:
+    /// Settings::geometric_multigrid, unless its hierarchy could not be
+    /// built on this mesh (setup_dofs() then falls back to the AMG).
+    bool multigrid_active = false;
+    /// Meshes on which that fallback happened.
+    unsigned int multigrid_fallbacks = 0;
+
+    class Preconditioners;
+    std::unique_ptr<Preconditioners> preconditioners;
+    /// Whether this mesh is solved directly (Settings::
+    /// direct_max_unknowns), decided by setup_dofs().
+    bool direct_active = false;
+    /// With direct_active: the factorised system of this solve.
+    std::unique_ptr<DirectStokesSolver> direct;
+    /// The pressure unknown (within the pressure block) that the direct
+    /// solver fixes at zero: the pressure is defined up to a constant.
+    types::global_dof_index pinned_pressure = numbers::invalid_dof_index;
+    /// Products with the velocity block (assembled or matrix-free), set
+    /// with the preconditioners.
+    std::unique_ptr<VelocityBlock> velocity_block;
+
+    /// Holds the multiplier between prepare_for_checkpoint() and the save.
+    std::unique_ptr<parallel::distributed::
+                      SolutionTransfer<dim, TrilinosWrappers::MPI::BlockVector>>
+      checkpoint_transfer;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,343 @@
+#include <algorithm>
+#include <cmath>
+#include <deal.II/base/function.h>
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/multigrid/mg_transfer_global_coarsening.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
+#include <stdexcept>
+#include <utility>
+
+namespace Fidus
+{
+  namespace
+  {
+    /**
+     * The active cell of @p coarse that covers the cell @p fine of a mesh
+     * one global coarsening finer (both refine the same coarse grid), and
+     * the child index of @p fine in it; -1 when it is the same cell.
+     */
+    template <int dim>
+    std::pair<typename Triangulation<dim>::cell_iterator, int>
+    covering_cell(typename Triangulation<dim>::cell_iterator fine,
+                  const Triangulation<dim>                  &coarse)
+    {
+      std::vector<unsigned int> path; // child indices, the finest first
+      while (fine->level() > 0)
+        {
+          const auto   parent = fine->parent();
+          unsigned int k      = 0;
+          while (parent->child(k) != fine)
+            ++k;
+          path.push_back(k);
+          fine = parent;
+        }
+      typename Triangulation<dim>::cell_iterator cell(&coarse,
+                                                      0,
+                                                      fine->index());
+      std::size_t                                left = path.size();
+      while (left > 0 && cell->has_children())
+        cell = cell->child(path[--left]);
+      if (left > 1 || cell->has_children())
+        throw std::logic_error("CutVelocityMultigrid: a level mesh is not "
+                               "one global coarsening of the next finer one");
+      return {cell, left == 1 ? int(path[0]) : -1};
+    }
+
+    using Row = std::vector<std::pair<unsigned int, double>>;
+
+    /**
+     * The prolongation from @p coarse (Q2 velocities, constraints
+     * @p coarse_constraints) to the velocity unknowns of @p fine, row by
+     * row in the numbering of @p fine: the value of fine unknown i is
+     * sum_j w_ij x_j over the coarse unconstrained unknowns j. Rows where
+     * @p keep is false stay empty.
+     */
+    template <int dim>
+    std::vector<Row>
+    prolongation_rows(const DoFHandler<dim>           &fine,
+                      const std::vector<bool>         &keep,
+                      const DoFHandler<dim>           &coarse,
+                      const AffineConstraints<double> &coarse_constraints)
+    {
+      const FE_Q<dim>                 q2(2);
+      const unsigned int              n_q2 = q2.n_dofs_per_cell();
+      std::vector<FullMatrix<double>> embedding;
+      for (unsigned int c = 0; c < GeometryInfo<dim>::max_children_per_cell;
+           ++c)
+        embedding.push_back(q2.get_prolongation_matrix(c));
+      const auto &coarse_fe = coarse.get_fe();
+      // The coarse cell's local index of (component, Q2 index).
+      std::vector<std::vector<unsigned int>> coarse_local(
+        dim,
+        std::vector<unsigned int>(n_q2));
+      for (unsigned int j = 0; j < coarse_fe.n_dofs_per_cell(); ++j)
+        {
+          const auto ci = coarse_fe.system_to_component_index(j);
+          coarse_local[ci.first][ci.second] = j;
+        }
+
+      std::vector<Row>                     rows(fine.n_dofs());
+      std::vector<bool>                    done(fine.n_dofs(), false);
+      std::vector<types::global_dof_index> fine_dofs,
+        coarse_dofs(coarse_fe.n_dofs_per_cell());
+      for (const auto &cell : fine.active_cell_iterators())
+        {
+          const auto &fe = cell->get_fe();
+          if (fe.n_dofs_per_cell() == 0)
+            continue;
+          fine_dofs.resize(fe.n_dofs_per_cell());
+          cell->get_dof_indices(fine_dofs);
+          const auto covering =
+            covering_cell<dim>(cell, coarse.get_triangulation());
+          const typename DoFHandler<dim>::cell_iterator coarse_cell(
+            &coarse.get_triangulation(),
+            covering.first->level(),
+            covering.first->index(),
+            &coarse);
+          coarse_cell->get_dof_indices(coarse_dofs);
+          for (unsigned int i = 0; i < fine_dofs.size(); ++i)
+            {
+              const auto index = fine_dofs[i];
+              if (done[index] || !keep[index])
+                continue;
+              const auto ci = fe.system_to_component_index(i);
+              if (ci.first >= dim)
+                continue;
+              done[index]    = true;
+              Row       &row = rows[index];
+              const auto add = [&](const unsigned int q, const double w) {
+                const auto j = coarse_dofs[coarse_local[ci.first][q]];
+                if (!coarse_constraints.is_constrained(j))
+                  row.emplace_back(j, w);
+                else if (const auto *entries =
+                           coarse_constraints.get_constraint_entries(j))
+                  for (const auto &e : *entries)
+                    row.emplace_back(e.first, w * e.second);
+              };
+              if (covering.second < 0)
+                add(ci.second, 1.);
+              else
+                for (unsigned int q = 0; q < n_q2; ++q)
+                  {
+                    const double w = embedding[covering.second](ci.second, q);
+                    if (std::abs(w) > 1e-14)
+                      add(q, w);
+                  }
+              // One entry per column.
+              std::sort(row.begin(), row.end());
+              Row merged;
+              for (const auto &e : row)
+                if (!merged.empty() && merged.back().first == e.first)
+                  merged.back().second += e.second;
+                else
+                  merged.push_back(e);
+              row.swap(merged);
+            }
+        }
+      return rows;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  CutVelocityMultigrid<dim>::CutVelocityMultigrid(
+    const DoFHandler<dim>           &system,
+    const AffineConstraints<double> &constraints,
+    const Vector<double>            &scale,
+    const std::vector<unsigned int> &periodic_axes,
+    const Settings                  &settings)
+    : system(system)
+    , system_constraints(constraints)
+    , scale(scale)
+    , periodic_axes(periodic_axes)
+    , settings(settings)
+  {}
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::initialize(
+    const SparseMatrix<double>      &matrix,
+    const std::vector<unsigned int> &velocity_unknowns,
+    const unsigned int               n_rigid)
+  {
+    finest = &matrix;
+    prolongation_pattern.clear();
+    prolongation.clear();
+    coarse_pattern.clear();
+    coarse.clear();
+    smoother.clear();
+
+    // Coarsest first; the last one is the solve's mesh.
+    const auto meshes =
+      MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
+        system.get_triangulation());
+    const unsigned int  n_levels = meshes.size();
+    const FESystem<dim> fe(FE_Q<dim>(2), dim);
+    // Level l (the finest is 0) is meshes[n_levels - 1 - l].
+    std::vector<std::unique_ptr<DoFHandler<dim>>> dofs(n_levels);
+    std::vector<AffineConstraints<double>>        constraints(n_levels);
+    for (unsigned int l = 1; l < n_levels; ++l)
+      {
+        dofs[l] = std::make_unique<DoFHandler<dim>>(*meshes[n_levels - 1 - l]);
+        dofs[l]->distribute_dofs(fe);
+        AffineConstraints<double> &c = constraints[l];
+        DoFTools::make_hanging_node_constraints(*dofs[l], c);
+        for (const unsigned int axis : periodic_axes)
+          DoFTools::make_periodicity_constraints(*dofs[l],
+                                                 2 * axis,
+                                                 2 * axis + 1,
+                                                 axis,
+                                                 c);
+        // The box faces (2d, 2d + 1 for axis d) carry the velocity: the
+        // correction is zero there.
+        for (unsigned int face = 0; face < 2 * dim; ++face)
+          if (std::find(periodic_axes.begin(), periodic_axes.end(), face / 2) ==
+              periodic_axes.end())
+            VectorTools::interpolate_boundary_values(
+              *dofs[l],
+              face,
+              Functions::ZeroFunction<dim>(dim),
+              c);
+        c.close();
+      }
+
+    // The finest level's rows: the system's unconstrained velocities, in
+    // the caller's numbering, divided by the scaling.
+    std::vector<int> local(system.n_dofs(), -1);
+    for (unsigned int k = 0; k < velocity_unknowns.size(); ++k)
+      local[velocity_unknowns[k]] = k;
+    for (unsigned int l = 0; l + 1 < n_levels; ++l)
+      {
+        const DoFHandler<dim> &fine = l == 0 ? system : *dofs[l];
+        std::vector<bool>      keep(fine.n_dofs());
+        for (unsigned int i = 0; i < fine.n_dofs(); ++i)
+          keep[i] = l == 0 ?
+                      local[i] >= 0 && !system_constraints.is_constrained(i) :
+                      !constraints[l].is_constrained(i);
+        const std::vector<Row> rows =
+          prolongation_rows<dim>(fine, keep, *dofs[l + 1], constraints[l + 1]);
+        // The rigid unknowns follow the velocities on every level, the
+        // same on all.
+        const unsigned int n_rows =
+          (l == 0 ? velocity_unknowns.size() : fine.n_dofs()) + n_rigid;
+        const unsigned int     n_coarse = dofs[l + 1]->n_dofs();
+        DynamicSparsityPattern dsp(n_rows, n_coarse + n_rigid);
+        for (unsigned int i = 0; i < rows.size(); ++i)
+          for (const auto &e : rows[i])
+            dsp.add(l == 0 ? local[i] : i, e.first);
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          dsp.add(n_rows - n_rigid + k, n_coarse + k);
+        prolongation_pattern.push_back(std::make_unique<SparsityPattern>());
+        prolongation_pattern.back()->copy_from(dsp);
+        prolongation.push_back(
+          std::make_unique<SparseMatrix<double>>(*prolongation_pattern.back()));
+        for (unsigned int i = 0; i < rows.size(); ++i)
+          for (const auto &e : rows[i])
+            prolongation.back()->set(l == 0 ? local[i] : i,
+                                     e.first,
+                                     l == 0 ? e.second / scale[i] : e.second);
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          prolongation.back()->set(n_rows - n_rigid + k, n_coarse + k, 1.);
+
+        // A_{l+1} = P^T A_l P. Unknowns that reach no fluid (inside a
+        // particle) or are constrained have empty rows: a unit diagonal
+        // keeps them decoupled and zero.
+        SparsityPattern      product_pattern;
+        SparseMatrix<double> product(product_pattern);
+        level_matrix(l).mmult(product, *prolongation.back());
+        coarse_pattern.push_back(std::make_unique<SparsityPattern>());
+        coarse.push_back(
+          std::make_unique<SparseMatrix<double>>(*coarse_pattern.back()));
+        prolongation.back()->Tmmult(*coarse.back(), product);
+        for (unsigned int i = 0; i < coarse.back()->m(); ++i)
+          if (coarse.back()->diag_element(i) == 0.)
+            coarse.back()->diag_element(i) = 1.;
+      }
+
+    for (unsigned int l = 0; l + 1 < n_levels; ++l)
+      {
+        const SparseMatrix<double>       &a = level_matrix(l);
+        typename Smoother::AdditionalData data;
+        data.degree              = settings.smoother_degree;
+        data.smoothing_range     = settings.smoothing_range;
+        data.eig_cg_n_iterations = 12;
+        data.preconditioner =
+          std::make_shared<DiagonalMatrix<Vector<double>>>();
+        Vector<double> &inverse = data.preconditioner->get_vector();
+        inverse.reinit(a.m());
+        for (unsigned int i = 0; i < a.m(); ++i)
+          {
+            const double d = a.diag_element(i);
+            inverse[i]     = d > 0. ? 1. / d : 1.;
+          }
+        smoother.push_back(std::make_unique<Smoother>());
+        smoother.back()->initialize(a, data);
+      }
+    coarsest.initialize(level_matrix(n_levels - 1));
+
+    residual.resize(n_levels);
+    level_rhs.resize(n_levels);
+    level_solution.resize(n_levels);
+    for (unsigned int l = 0; l < n_levels; ++l)
+      {
+        residual[l].reinit(level_matrix(l).m());
+        level_rhs[l].reinit(level_matrix(l).m());
+        level_solution[l].reinit(level_matrix(l).m());
+      }
+  }
+
+
+
+  template <int dim>
+  const SparseMatrix<double> &
+  CutVelocityMultigrid<dim>::level_matrix(const unsigned int level) const
+  {
+    return level == 0 ? *finest : *coarse[level - 1];
+  }
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::v_cycle(const unsigned int    level,
+                                     Vector<double>       &x,
+                                     const Vector<double> &b) const
+  {
+    if (level + 1 == residual.size())
+      {
+        coarsest.vmult(x, b);
+        return;
+      }
+    const SparseMatrix<double> &a = level_matrix(level);
+    smoother[level]->vmult(x, b);
+    a.vmult(residual[level], x);
+    residual[level].sadd(-1., 1., b);
+    prolongation[level]->Tvmult(level_rhs[level + 1], residual[level]);
+    v_cycle(level + 1, level_solution[level + 1], level_rhs[level + 1]);
+    prolongation[level]->vmult_add(x, level_solution[level + 1]);
+    smoother[level]->step(x, b);
+  }
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::vmult(Vector<double>       &dst,
+                                   const Vector<double> &src) const
+  {
+    v_cycle(0, dst, src);
+  }
+
+
+
+  template class CutVelocityMultigrid<2>;
+  template class CutVelocityMultigrid<3>;
+} // namespace Fidus

@@ -1,0 +1,40 @@
+#include <deal.II/base/numbers.h>
+#include <deal.II/lac/vector.h>
+#include <fidus/fluid/fictitious_domain/particle_force_density.h>
+
+namespace Fidus
+{
+  template <int dim>
+  ParticleForceDensity<dim>::ParticleForceDensity(
+    const SolidIndicator<dim>                &solid,
+    const std::vector<std::array<double, 3>> &forces)
+    : Function<dim>(dim + 1)
+    , solid(solid)
+    , forces(forces)
+  {}
+
+
+
+  template <int dim>
+  void
+  ParticleForceDensity<dim>::vector_value(const Point<dim> &x,
+                                          Vector<double>   &values) const
+  {
+    values             = 0.;
+    int          entry = -1;
+    const double phi   = solid.fraction(x, entry);
+    if (phi == 0.)
+      return;
+    const unsigned int i = solid.owner(entry);
+    const double       a = solid.radius(entry);
+    const double       volume =
+      dim == 3 ? 4. / 3. * numbers::PI * a * a * a : numbers::PI * a * a;
+    for (unsigned int d = 0; d < dim; ++d)
+      values[d] = phi * forces[i][d] / volume;
+  }
+
+
+
+  template class ParticleForceDensity<2>;
+  template class ParticleForceDensity<3>;
+} // namespace Fidus

@@ -1,0 +1,443 @@
+// StokesSolver::solve(): the solver as the problem of the Uzawa loop
+// (UzawaLoop, augmented Lagrangian for rigidity), the strain left in the
+// solid, and the FGMRES solve of each iteration; the rest of the class
+// (DoFs, constraints, assembly, errors) is in stokes_solver.cc.
+#include "stokes_solver_preconditioners.h"
+
+#include <cmath>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <fidus/core/input_error.h>
+#include <fidus/fluid/fictitious_domain/block_schur_preconditioner.h>
+#include <fidus/fluid/fictitious_domain/deflated_velocity_preconditioner.h>
+#include <fidus/fluid/fictitious_domain/rigid_mode_correction.h>
+#include <fidus/fluid/fictitious_domain/stokes_operator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
+#include <fidus/fluid/fictitious_domain/velocity_multigrid.h>
+#include <limits>
+
+namespace Fidus
+{
+  template <int dim>
+  UzawaProblem::Residual
+  StokesSolver<dim>::rigidity_residual(const SolidIndicator<dim> &solid) const
+  {
+    FEValues<dim>                        fe_values(fe,
+                            quadrature,
+                            update_gradients | update_quadrature_points |
+                              update_JxW_values);
+    const FEValuesExtractors::Vector     velocities(0);
+    std::vector<SymmetricTensor<2, dim>> eps(quadrature.size());
+    std::vector<unsigned int>            cands;
+    // In the held solid, in shared cells, total, box volume; then, per
+    // particle, the held solid's strain and volume.
+    const unsigned int  n_particles = solid.n_particles();
+    std::vector<double> sums(4 + 2 * n_particles, 0.);
+    for (const auto &cell : cells)
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[velocities].get_function_symmetric_gradients(solution, eps);
+          solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+          // Slivers are reported with the released solid.
+          const bool shared_cell = shared[cell->active_cell_index()] ||
+                                   sliver[cell->active_cell_index()];
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double e2 = (eps[q] * eps[q]) * fe_values.JxW(q);
+              sums[2] += e2;
+              sums[3] += fe_values.JxW(q);
+              int          k = -1;
+              const double phi =
+                cands.empty() ?
+                  0. :
+                  solid.fraction(fe_values.quadrature_point(q), cands, k);
+              if (phi == 0.)
+                continue;
+              sums[shared_cell ? 1 : 0] += phi * e2;
+              if (!shared_cell)
+                {
+                  const unsigned int i = solid.owner(k);
+                  sums[4 + 2 * i] += phi * e2;
+                  sums[5 + 2 * i] += phi * fe_values.JxW(q);
+                }
+            }
+        }
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    UzawaProblem::Residual r;
+    if (!(sums[2] > 0))
+      return r;
+    r.held       = std::sqrt(sums[0] / sums[2]);
+    r.released   = std::sqrt(sums[1] / sums[2]);
+    r.shear_rate = std::sqrt(2. * sums[2] / sums[3]);
+    // A particle whose solid is all released has no held part to measure.
+    for (unsigned int i = 0; i < n_particles; ++i)
+      if (sums[5 + 2 * i] > 0.)
+        r.particle =
+          std::max(r.particle,
+                   std::sqrt(sums[4 + 2 * i] / sums[5 + 2 * i]) / r.shear_rate);
+    return r;
+  }
+
+
+
+  /**
+   * StokesSolver as the problem of the Uzawa loop: the multiplier's load,
+   * one FGMRES solve, the strain left in the solid, the rigid motions and
+   * the plain Uzawa update, on the solver's own vectors.
+   */
+  template <int dim>
+  class StokesSolver<dim>::Uzawa : public UzawaProblem
+  {
+  public:
+    Uzawa(StokesSolver<dim>         &solver,
+          const SolidIndicator<dim> &solid,
+          Statistics                &stats)
+      : solver(solver)
+      , solid(solid)
+      , stats(stats)
+      , update(solver.distributed_multiplier.block(0))
+      , rho(2. * (solver.settings.penalty_factor - 1.) *
+            solver.settings.viscosity)
+    {}
+
+    void
+    load_multiplier() override
+    {
+      solver.assemble_multiplier_rhs(solid);
+    }
+
+    unsigned int
+    solve_velocity(const double tolerance) override
+    {
+      return solver.solve_linear(stats, tolerance);
+    }
+
+    Residual
+    rigidity_residual() const override
+    {
+      return solver.rigidity_residual(solid);
+    }
+
+    std::vector<RigidMotion>
+    rigid_motions() const override
+    {
+      return compute_rigid_motions(solver.dof_handler,
+                                   solver.cells,
+                                   solver.solution,
+                                   solid,
+                                   solver.quadrature,
+                                   &solver.shared);
+    }
+
+    double
+    particle_radius(const unsigned int i) const override
+    {
+      return solid.radius(i);
+    }
+
+    void
+    update_multiplier() override
+    {
+      // lambda += rho M u, in place, on the held solid's DoFs only.
+      TrilinosWrappers::MPI::Vector &x = solver.distributed_multiplier.block(0);
+      update                           = solver.distributed_solution.block(0);
+      update.scale(solver.solid_mask.block(0));
+      x.add(rho, update);
+      solver.multiplier = solver.distributed_multiplier;
+    }
+
+  private:
+    StokesSolver<dim>         &solver;
+    const SolidIndicator<dim> &solid;
+    Statistics                &stats;
+    /// The masked velocity of the update, allocated once per solve.
+    TrilinosWrappers::MPI::Vector update;
+    const double                  rho;
+  };
+
+
+
+  template <int dim>
+  unsigned int
+  StokesSolver<dim>::solve_linear(Statistics &stats, const double tolerance)
+  {
+    if (direct)
+      {
+        // Exact to round-off whatever the loop asks (an inexact Uzawa
+        // tolerance saves nothing here): held to the linear tolerance.
+        direct->solve(distributed_solution, rhs, settings.linear_tolerance);
+        constraints.distribute(distributed_solution);
+        solution = distributed_solution;
+        return 0;
+      }
+    const auto &Q = preconditioners->rigid_body_correction;
+    if (multigrid_active)
+      return solve_linear(
+        stats,
+        DeflatedVelocityPreconditioner<VelocityMultigrid<dim>>(
+          *velocity_block,
+          *preconditioners->multigrid,
+          Q),
+        tolerance);
+    return solve_linear(
+      stats,
+      DeflatedVelocityPreconditioner<TrilinosWrappers::PreconditionAMG>(
+        *velocity_block,
+        preconditioners->amg,
+        Q),
+      tolerance);
+  }
+
+
+
+  template <int dim>
+  template <class VelocityPreconditioner>
+  unsigned int
+  StokesSolver<dim>::solve_linear(Statistics                   &stats,
+                                  const VelocityPreconditioner &velocity,
+                                  const double                  tolerance)
+  {
+    const double rhs_norm = rhs.l2_norm();
+    if (rhs_norm == 0.)
+      {
+        distributed_solution = 0;
+        constraints.distribute(distributed_solution);
+        solution = distributed_solution;
+        return 0;
+      }
+    const double target = tolerance * rhs_norm;
+
+    // Every solve starts from zero, not from the last velocity. The last
+    // velocity is rigid on the previous particle positions or for the
+    // previous multiplier, so its residual sits at the interfaces: the
+    // content that the pressure-mass Schur approximation handles worst.
+    // From zero, the residual is the smooth right-hand side. Measured
+    // (doc/performance.md): 2D paper scene to t = 3, level 6: 4576 -> 3079
+    // FGMRES iterations; second Uzawa solve of the 2D inclusion: 270 -> 92.
+    distributed_solution = 0;
+
+    unsigned int iterations = 0;
+    bool         done       = false;
+    SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData data(
+      settings.gmres_restart);
+    if (settings.max_cheap_iterations > 0)
+      {
+        SolverControl control(settings.max_cheap_iterations,
+                              target,
+                              false,
+                              false);
+        const BlockSchurPreconditioner<VelocityPreconditioner> cheap(
+          system_matrix,
+          *velocity_block,
+          preconditioner_matrix.block(1, 1),
+          velocity,
+          preconditioners->jacobi,
+          false);
+        try
+          {
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
+                                                                    data);
+            solver.solve(StokesOperator(system_matrix, *velocity_block),
+                         distributed_solution,
+                         rhs,
+                         cheap);
+            done = true;
+          }
+        catch (const SolverControl::NoConvergence &)
+          {}
+        iterations += control.last_step();
+      }
+    if (!done)
+      {
+        ++stats.expensive_solves;
+        SolverControl control(settings.max_linear_iterations,
+                              target,
+                              false,
+                              false);
+        const BlockSchurPreconditioner<VelocityPreconditioner> expensive(
+          system_matrix,
+          *velocity_block,
+          preconditioner_matrix.block(1, 1),
+          velocity,
+          preconditioners->jacobi,
+          true);
+        try
+          {
+            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
+                                                                    data);
+            solver.solve(StokesOperator(system_matrix, *velocity_block),
+                         distributed_solution,
+                         rhs,
+                         expensive);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            std::ostringstream s;
+            s << "the Stokes solver (FGMRES) did not converge in "
+              << e.last_step << " iterations: residual " << e.last_residual
+              << " > target " << target << " (Fluid/Linear solver/Tolerance = "
+              << settings.linear_tolerance << ", this solve's tolerance "
+              << tolerance
+              << "); try more 'Maximum iterations' or a smaller 'Penalty "
+                 "factor'";
+            throw RunError(s.str());
+          }
+        iterations += control.last_step();
+        stats.inner_iterations += expensive.inner_iterations;
+      }
+    constraints.distribute(distributed_solution);
+    solution = distributed_solution;
+    return iterations;
+  }
+
+
+
+  template <int dim>
+  typename StokesSolver<dim>::Statistics
+  StokesSolver<dim>::solve(const SolidIndicator<dim> &solid,
+                           const Function<dim>       &boundary_velocity,
+                           const Function<dim>       *body_force,
+                           const Function<dim>       *fluid_viscosity)
+  {
+    Statistics stats;
+    Timer      timer;
+
+    // Boundary values change with the shear rate: rebuild the constraints
+    // (same constrained set as in setup_dofs, new inhomogeneities).
+    make_constraints(boundary_velocity);
+    // Part of the assembly time, printed apart in verbose output: what
+    // keeping the hanging-node and periodicity constraints per mesh (and
+    // changing only the inhomogeneities) could save at most.
+    const double constraint_seconds = timer.wall_time();
+
+    assemble_system(solid, body_force, fluid_viscosity);
+    stats.shared_cells     = n_shared_cells;
+    stats.assemble_seconds = timer.wall_time();
+
+    timer.restart();
+    if (direct_active)
+      {
+        // The first solve on a mesh copies the pattern and analyses it;
+        // later ones (setup_dofs() resets it) copy values and factorise.
+        if (direct)
+          direct->refactorise();
+        else
+          direct = std::make_unique<DirectStokesSolver>(system_matrix,
+                                                        owned_partitioning,
+                                                        pinned_pressure,
+                                                        mpi_communicator);
+      }
+    else
+      {
+        setup_preconditioners(solid, fluid_viscosity);
+        if (!velocity_block_assembled())
+          subtract_constraint_load();
+      }
+    stats.setup_seconds = timer.wall_time();
+
+    timer.restart();
+    if (!multiplier_valid || !settings.reuse_multiplier)
+      {
+        distributed_multiplier = 0;
+        multiplier             = distributed_multiplier;
+      }
+    else
+      {
+        // The warm start lives on the solid of the previous step. Its
+        // values on DoFs that are no longer in the solid mask (the particle
+        // moved off them, or their cells are now shared) would never be
+        // updated by the loop, which only changes masked DoFs, yet they
+        // still load the held solid next to them through e(lambda): a
+        // frozen error that stalled the loop every other step in a dense
+        // suspension (doc/uzawa.md). Keep only the masked part.
+        distributed_multiplier.block(0).scale(solid_mask.block(0));
+        multiplier = distributed_multiplier;
+      }
+    if (solid.n_particles() == 0)
+      {
+        assemble_multiplier_rhs(solid);
+        stats.linear_iterations +=
+          solve_linear(stats, settings.linear_tolerance);
+        stats.uzawa_iterations  = 1;
+        stats.rigidity_residual = 0.;
+      }
+    else
+      {
+        UzawaLoop::Settings loop_settings;
+        loop_settings.rigidity_tolerance    = settings.rigidity_tolerance;
+        loop_settings.rigidity_per_particle = settings.rigidity_per_particle;
+        loop_settings.rigid_velocity_tolerance =
+          settings.rigid_velocity_tolerance;
+        loop_settings.forced_velocity_scale = settings.forced_velocity_scale;
+        loop_settings.max_iterations        = settings.max_uzawa_iterations;
+        loop_settings.linear_tolerance      = settings.linear_tolerance;
+        loop_settings.inexact_factor        = settings.inexact_uzawa_factor;
+        // With Reuse multiplier the first solve is usually the last: from
+        // the last step's multiplier, and also after a remesh, where the
+        // penalty alone mostly meets the tolerance (the 2D paper scene:
+        // one Uzawa iteration per step). Without it the loop starts from
+        // zero every step and takes several (a dense suspension: 4-5).
+        loop_settings.first_solve_exact = settings.reuse_multiplier;
+        loop_settings.print =
+          settings.verbose &&
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+
+        Uzawa                   problem(*this, solid, stats);
+        const UzawaLoop::Result loop = UzawaLoop(loop_settings).run(problem);
+        stats.uzawa_iterations       = loop.iterations;
+        stats.linear_iterations += loop.linear_iterations;
+        stats.rigidity_residual          = loop.rigidity_residual;
+        stats.particle_rigidity_residual = loop.particle_rigidity_residual;
+        stats.shared_residual            = loop.released_residual;
+        stats.rigid_velocity_change      = loop.rigid_velocity_change;
+        stats.uzawa_converged            = loop.converged;
+        stats.uzawa_stalled              = loop.stalled;
+        stats.solid_pass_seconds         = loop.solid_pass_seconds;
+        // Only the multiplier of a converged loop is a warm start for the
+        // next solve. Where rigidity cannot be met (two particles closer
+        // than a cell, so one cell would have to carry two rigid motions;
+        // a particle touching a Dirichlet face), lambda grows with every
+        // iteration; carried from step to step it kept growing and drove
+        // the particle velocities to garbage within a few steps (dense
+        // suspension, 100 discs at level 6: max |omega| 1.3 -> 25 -> 34,
+        // doc/uzawa.md).
+        multiplier_valid = stats.uzawa_converged;
+      }
+
+    // Report a pressure of zero mean.
+    const double mean =
+      VectorTools::compute_mean_value(dof_handler, quadrature, solution, dim);
+    distributed_solution.block(1).add(-mean);
+    solution            = distributed_solution;
+    stats.solve_seconds = timer.wall_time();
+    if (settings.verbose &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "    Stokes: assembly " << stats.assemble_seconds
+                << " s (of which constraints " << constraint_seconds
+                << " s), preconditioner set-up " << stats.setup_seconds
+                << " s, Uzawa/FGMRES " << stats.solve_seconds
+                << " s (of which passes over the solid "
+                << stats.solid_pass_seconds << " s), DoFs " << n_dofs()
+                << std::endl;
+    return stats;
+  }
+
+  // The class is instantiated in stokes_solver.cc; here only the members
+  // defined in this file.
+  template typename StokesSolver<2>::Statistics
+  StokesSolver<2>::solve(const SolidIndicator<2> &,
+                         const Function<2> &,
+                         const Function<2> *,
+                         const Function<2> *);
+  template typename StokesSolver<3>::Statistics
+  StokesSolver<3>::solve(const SolidIndicator<3> &,
+                         const Function<3> &,
+                         const Function<3> *,
+                         const Function<3> *);
+} // namespace Fidus
