@@ -2,7 +2,7 @@
 # Long stress run (issue: numerical robustness): a dense 2D suspension of
 # N discs at area fraction phi between sliding walls (periodic in x),
 # sheared for S strain units, with the chosen contact model and fluid
-# model. The short version is tests/stress/dense_2d.
+# model. The short version is tests/robustness/dense_2d.
 # Prints: steps, smallest gap over the run (must be >= -tolerance), the
 # largest Uzawa and FGMRES counts per step, max |U| and |omega| over the
 # run, and whether any value was NaN (contrib/benchmarks/summarize_run.sh).

@@ -2,7 +2,7 @@
 # Long 3D stress run (issue: numerical robustness): N spheres at volume
 # fraction phi between sliding walls (periodic in x and z), sheared with
 # the fictitious-domain fluid and the chosen contact model for S strain
-# units. The short version is tests/stress/suspension_3d (one step).
+# units. The short version is tests/robustness/suspension_3d (one step).
 # Prints: steps, smallest gap over the run (must be >= -tolerance), the
 # largest Uzawa and FGMRES counts per step, max |U| and |omega| over the
 # run, the wall time, and whether any value was NaN.

@@ -200,60 +200,70 @@ namespace Fidus
 
 
 
-  void
-  Parameters::parse(ParameterHandler &prm, const std::string &input_name)
+  namespace
   {
-    dimension              = prm.get_integer("Dimension");
-    output_directory       = prm.get("Output directory");
-    const unsigned int dim = dimension;
-    // Fluid entries whose 'auto' depends on the contact model, read below.
-    std::string shared_cells_choice, reuse_choice;
-
-    prm.enter_subsection("Domain");
+    /// Domain: the box, its boundary condition and the shear rate.
+    void
+    parse_domain(ParameterHandler &prm, Parameters &p)
     {
-      lower_left = parse_point(prm.get("Lower left"), "Domain/Lower left", dim);
-      upper_right =
-        parse_point(prm.get("Upper right"), "Domain/Upper right", dim);
-      const std::string bc = prm.get("Boundary condition");
-      boundary_condition =
-        bc == "linear shear"  ? BoundaryCondition::linear_shear :
-        bc == "sliding walls" ? BoundaryCondition::sliding_walls :
-        bc == "cavity"        ? BoundaryCondition::cavity :
-                                BoundaryCondition::exact_rigid_inclusion;
-      shear_rate = prm.get("Shear rate");
+      const unsigned int dim = p.dimension;
+      prm.enter_subsection("Domain");
+      {
+        p.lower_left =
+          parse_point(prm.get("Lower left"), "Domain/Lower left", dim);
+        p.upper_right =
+          parse_point(prm.get("Upper right"), "Domain/Upper right", dim);
+        const std::string bc = prm.get("Boundary condition");
+        p.boundary_condition =
+          bc == "linear shear"  ? BoundaryCondition::linear_shear :
+          bc == "sliding walls" ? BoundaryCondition::sliding_walls :
+          bc == "cavity"        ? BoundaryCondition::cavity :
+                                  BoundaryCondition::exact_rigid_inclusion;
+        p.shear_rate = prm.get("Shear rate");
+      }
+      prm.leave_subsection();
     }
-    prm.leave_subsection();
 
-    prm.enter_subsection("Fluid");
+
+
+    /// Fluid, but for its linear solver: the model and its entries; the
+    /// 'auto' of Shared cells and Reuse multiplier depends on the contact
+    /// model and is decided by Parameters::parse().
+    void
+    parse_fluid(ParameterHandler &prm,
+                Parameters       &p,
+                std::string      &shared_cells_choice,
+                std::string      &reuse_choice)
     {
-      const std::string model = prm.get("Model");
-      fluid_model =
+      const unsigned int dim   = p.dimension;
+      const std::string  model = prm.get("Model");
+      p.fluid_model =
         model == "fictitious domain" ? FluidModelType::fictitious_domain :
         model == "undisturbed shear" ? FluidModelType::undisturbed_shear :
                                        FluidModelType::cut_finite_element;
-      cut_minimum_gap       = prm.get_double("Cut minimum gap");
-      cut_gap_cells         = prm.get_double("Cut gap cells");
-      cut_linear_solver     = prm.get("Cut linear solver");
-      viscosity             = prm.get_double("Viscosity");
-      penalty_factor        = prm.get_double("Penalty factor");
-      velocity_degree       = prm.get_integer("Velocity degree");
-      rigidity_per_particle = prm.get("Rigidity measure") == "particle";
+      p.cut_minimum_gap       = prm.get_double("Cut minimum gap");
+      p.cut_gap_cells         = prm.get_double("Cut gap cells");
+      p.cut_linear_solver     = prm.get("Cut linear solver");
+      p.viscosity             = prm.get_double("Viscosity");
+      p.penalty_factor        = prm.get_double("Penalty factor");
+      p.velocity_degree       = prm.get_integer("Velocity degree");
+      p.rigidity_per_particle = prm.get("Rigidity measure") == "particle";
       // auto: the single particle's work-precision optimum in each measure
       // (doc/uzawa.md, "Rigidity per particle").
-      rigidity_tolerance =
+      p.rigidity_tolerance =
         number_or_auto(prm.get("Rigidity tolerance"),
                        "Fluid/Rigidity tolerance",
-                       rigidity_per_particle ? 5e-3 : 1e-3,
+                       p.rigidity_per_particle ? 5e-3 : 1e-3,
                        "auto or a number in (0, 1)",
                        [](const double v) { return v > 0. && v < 1.; });
-      rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
-      sliver_threshold         = prm.get_double("Sliver threshold");
-      max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
-      reuse_choice             = prm.get("Reuse multiplier");
-      shared_cells_choice      = prm.get("Shared cells");
-      solid_retraction         = prm.get_double("Solid retraction");
-      solid_smoothing          = prm.get_double("Solid smoothing");
-      lubrication              = prm.get_bool("Lubrication correction");
+      p.rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
+      p.sliver_threshold         = prm.get_double("Sliver threshold");
+      p.max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
+      reuse_choice               = prm.get("Reuse multiplier");
+      shared_cells_choice        = prm.get("Shared cells");
+      p.solid_retraction         = prm.get_double("Solid retraction");
+      p.solid_smoothing          = prm.get_double("Solid smoothing");
+      p.lubrication              = prm.get_bool("Lubrication correction");
       // An entry that is 'auto' (then {auto_pairs, auto_walls}), one gap
       // in cells for both, or two: the particle pairs' and the walls'.
       const auto pair_and_wall_ranges = [&](const std::string &entry,
@@ -278,8 +288,8 @@ namespace Fidus
         pair_and_wall_ranges("Lubrication range",
                              dim == 3 ? 0.3 : 0.65,
                              dim == 3 ? 0.2 : 0.33);
-      lubrication_range      = squeeze[0];
-      lubrication_wall_range = squeeze[1];
+      p.lubrication_range      = squeeze[0];
+      p.lubrication_wall_range = squeeze[1];
       // An entry that is 'auto' (then auto_value) or one gap in cells.
       const auto gap_or_auto = [&](const std::string &entry,
                                    const double       auto_value) {
@@ -290,25 +300,35 @@ namespace Fidus
       };
       const std::vector<double> tangential =
         pair_and_wall_ranges("Lubrication tangential range",
-                             lubrication_range,
-                             dim == 3 ? lubrication_wall_range : 1.);
-      lubrication_tangential_range      = tangential[0];
-      lubrication_wall_tangential_range = tangential[1];
+                             p.lubrication_range,
+                             dim == 3 ? p.lubrication_wall_range : 1.);
+      p.lubrication_tangential_range      = tangential[0];
+      p.lubrication_wall_tangential_range = tangential[1];
       // 2 in 2D: the range with which a lubricated pair in shear does not
       // overlap at any level. A held pair would want 0.7-1, but that
       // changes the dense scene's viscosity by a third, with no reference
       // for it yet (doc/lubrication_2d.md, "Two discs held in shear").
-      lubrication_flow_range =
+      p.lubrication_flow_range =
         gap_or_auto("Lubrication flow range", dim == 3 ? 0.45 : 2.);
-      lubrication_tangential = prm.get_bool("Lubrication tangential terms");
+      p.lubrication_tangential = prm.get_bool("Lubrication tangential terms");
+    }
+
+
+
+    /// Fluid/Linear solver, with its 'auto' rules (direct in 2D, GMG in
+    /// 3D, the rigid-body correction).
+    void
+    parse_linear_solver(ParameterHandler &prm, Parameters &p)
+    {
+      const unsigned int dim = p.dimension;
       prm.enter_subsection("Linear solver");
-      linear_tolerance          = prm.get_double("Tolerance");
-      inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
-      max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
-      max_linear_iterations     = prm.get_integer("Maximum iterations");
-      amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
-      amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
-      amg_smoother_type         = prm.get("AMG smoother type");
+      p.linear_tolerance          = prm.get_double("Tolerance");
+      p.inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
+      p.max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
+      p.max_linear_iterations     = prm.get_integer("Maximum iterations");
+      p.amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+      p.amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+      p.amg_smoother_type         = prm.get("AMG smoother type");
       // Method auto: direct in 2D (doc/fluid.md, "A direct solver for
       // 2D"), unless a preconditioner was chosen by name, which asks for
       // FGMRES; and FGMRES above a million unknowns, where the
@@ -316,53 +336,58 @@ namespace Fidus
       // time.
       const std::string method         = prm.get("Method");
       const std::string preconditioner = prm.get("Preconditioner");
-      direct_max_unknowns =
+      p.direct_max_unknowns =
         method == "direct" ? std::numeric_limits<unsigned long long>::max() :
         method == "auto" && dim == 2 && preconditioner == "auto" ? 1000000ULL :
                                                                    0ULL;
       // Preconditioner auto: the faster one per dimension as measured
       // (doc/preconditioners.md): GMG in 3D, AMG in 2D and for degrees
       // the GMG does not have.
-      geometric_multigrid =
+      p.geometric_multigrid =
         preconditioner == "GMG" ||
-        (preconditioner == "auto" && dim == 3 && velocity_degree <= 3);
-      mg_smoother_degree     = prm.get_integer("Multigrid smoother degree");
-      mg_viscosity_averaging = prm.get("Multigrid viscosity averaging");
-      mg_smoother_blocks     = prm.get("Multigrid smoother blocks");
+        (preconditioner == "auto" && dim == 3 && p.velocity_degree <= 3);
+      p.mg_smoother_degree     = prm.get_integer("Multigrid smoother degree");
+      p.mg_viscosity_averaging = prm.get("Multigrid viscosity averaging");
+      p.mg_smoother_blocks     = prm.get("Multigrid smoother blocks");
       // auto: off where measured not to pay (GMG in 3D with its Galerkin
       // levels and cut-cell blocks; doc/preconditioners.md).
       const std::string correction = prm.get("Rigid-body correction");
-      rigid_body_correction =
+      p.rigid_body_correction =
         correction == "true" ||
-        (correction == "auto" && !(geometric_multigrid && dim == 3));
-      matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
-      if (geometric_multigrid && velocity_degree > 3)
+        (correction == "auto" && !(p.geometric_multigrid && dim == 3));
+      p.matrix_free_velocity_block = prm.get_bool("Matrix-free velocity block");
+      if (p.geometric_multigrid && p.velocity_degree > 3)
         throw InputError(
           "entry 'Fluid/Linear solver/Preconditioner' has the value 'GMG' "
           "with 'Fluid/Velocity degree' = " +
-          std::to_string(velocity_degree) +
+          std::to_string(p.velocity_degree) +
           "; allowed: GMG with Velocity degree 2 or 3, or Preconditioner = "
           "AMG");
       prm.leave_subsection();
     }
-    prm.leave_subsection();
 
-    prm.enter_subsection("Particles");
+
+
+    /// Particles: the positions, given or from a file (relative to
+    /// @p input_name), with the file's radii in @p file_radii.
+    void
+    parse_positions(ParameterHandler    &prm,
+                    Parameters          &p,
+                    const std::string   &input_name,
+                    std::vector<double> &file_radii)
     {
-      const std::vector<double> given_radii =
-        parse_numbers(prm.get("Radius"), "Particles/Radius");
-      positions_file                   = prm.get("Positions file");
+      const unsigned int dim           = p.dimension;
+      p.positions_file                 = prm.get("Positions file");
       const std::string positions_text = prm.get("Positions");
-      positions.clear();
-      std::vector<double> file_radii;
+      p.positions.clear();
 
-      if (!positions_file.empty() && !Utilities::trim(positions_text).empty())
+      if (!p.positions_file.empty() && !Utilities::trim(positions_text).empty())
         throw InputError("entries 'Particles/Positions' and 'Particles/"
                          "Positions file' are both set; allowed: one of them");
 
-      if (!positions_file.empty())
+      if (!p.positions_file.empty())
         {
-          std::string path = positions_file;
+          std::string path = p.positions_file;
           if (path[0] != '/')
             {
               const auto slash = input_name.find_last_of('/');
@@ -373,7 +398,7 @@ namespace Fidus
           if (!in)
             throw InputError(
               "entry 'Particles/Positions file' has the value '" +
-              positions_file + "': the file '" + path +
+              p.positions_file + "': the file '" + path +
               "' cannot be read; allowed: a readable text "
               "file with lines 'x y [z] [radius]'");
           std::string  line;
@@ -417,11 +442,11 @@ namespace Fidus
                                  "by a radius");
               std::array<double, 3> x = {{0., 0., 0.}};
               std::copy(v.begin(), v.begin() + dim, x.begin());
-              positions.push_back(x);
+              p.positions.push_back(x);
               if (v.size() == dim + 1)
                 file_radii.push_back(v[dim]);
             }
-          if (!file_radii.empty() && file_radii.size() != positions.size())
+          if (!file_radii.empty() && file_radii.size() != p.positions.size())
             throw InputError("entry 'Particles/Positions file': '" + path +
                              "' gives a radius on some lines only; allowed: "
                              "a radius on every line or on none");
@@ -431,19 +456,31 @@ namespace Fidus
           for (const std::string &item :
                Utilities::split_string_list(positions_text, ';'))
             if (!item.empty())
-              positions.push_back(
+              p.positions.push_back(
                 parse_point(item, "Particles/Positions", dim));
         }
+    }
 
+
+
+    /// Particles/Generator: places the particles when asked to, their
+    /// radii in @p file_radii.
+    void
+    parse_generator(ParameterHandler          &prm,
+                    Parameters                &p,
+                    const std::vector<double> &given_radii,
+                    std::vector<double>       &file_radii)
+    {
+      const unsigned int dim = p.dimension;
       prm.enter_subsection("Generator");
       const unsigned int generator_count =
         prm.get_integer("Number of particles");
       const double generator_fraction = prm.get_double("Fraction");
       if (generator_count > 0 || generator_fraction > 0.)
         {
-          if (!positions.empty())
+          if (!p.positions.empty())
             throw InputError("entries 'Particles/Generator' and 'Particles/" +
-                             std::string(positions_file.empty() ?
+                             std::string(p.positions_file.empty() ?
                                            "Positions" :
                                            "Positions file") +
                              "' are both set; allowed: one of them");
@@ -464,8 +501,8 @@ namespace Fidus
             g.radii_values = given_radii;
           g.radii_weights = parse_numbers(prm.get("Radius weights"),
                                           "Particles/Generator/Radius weights");
-          g.lower         = lower_left;
-          g.upper         = upper_right;
+          g.lower         = p.lower_left;
+          g.upper         = p.upper_right;
           if (!Utilities::trim(prm.get("Region lower left")).empty())
             g.lower = parse_point(prm.get("Region lower left"),
                                   "Particles/Generator/Region lower left",
@@ -476,7 +513,7 @@ namespace Fidus
                                   dim);
           for (unsigned int d = 0; d < dim; ++d)
             {
-              if (g.lower[d] < lower_left[d] || g.upper[d] > upper_right[d])
+              if (g.lower[d] < p.lower_left[d] || g.upper[d] > p.upper_right[d])
                 throw InputError(
                   "entries 'Particles/Generator/Region lower left' and "
                   "'Region upper right' give a region that leaves the box "
@@ -485,9 +522,9 @@ namespace Fidus
               // Periodic where the box is ('sliding walls': all axes but y)
               // and the region spans it.
               g.periodic[d] =
-                boundary_condition == BoundaryCondition::sliding_walls &&
-                d != 1 && g.lower[d] == lower_left[d] &&
-                g.upper[d] == upper_right[d];
+                p.boundary_condition == BoundaryCondition::sliding_walls &&
+                d != 1 && g.lower[d] == p.lower_left[d] &&
+                g.upper[d] == p.upper_right[d];
             }
           double a_min = std::numeric_limits<double>::max();
           for (const double a : g.radii_values)
@@ -500,8 +537,8 @@ namespace Fidus
             {
               const Contact::GeneratedParticles placed =
                 Contact::ParticleGenerator::generate(g);
-              positions  = placed.positions;
-              file_radii = placed.radii;
+              p.positions = placed.positions;
+              file_radii  = placed.radii;
             }
           catch (const Contact::ContactError &e)
             {
@@ -510,26 +547,37 @@ namespace Fidus
             }
         }
       prm.leave_subsection();
+    }
 
+
+
+    /// Particles: one radius per particle, the external forces.
+    void
+    parse_radii_and_forces(ParameterHandler          &prm,
+                           Parameters                &p,
+                           const std::vector<double> &given_radii,
+                           const std::vector<double> &file_radii)
+    {
+      const unsigned int dim = p.dimension;
       if (!file_radii.empty())
-        radii = file_radii;
+        p.radii = file_radii;
       else if (given_radii.size() == 1)
-        radii.assign(positions.size(), given_radii[0]);
-      else if (given_radii.size() == positions.size() && !positions.empty())
-        radii = given_radii;
+        p.radii.assign(p.positions.size(), given_radii[0]);
+      else if (given_radii.size() == p.positions.size() && !p.positions.empty())
+        p.radii = given_radii;
       else
         throw InputError("entry 'Particles/Radius' has " +
                          std::to_string(given_radii.size()) + " values for " +
-                         std::to_string(positions.size()) +
+                         std::to_string(p.positions.size()) +
                          " particles; allowed: one value for all particles or "
                          "one per particle");
-      for (unsigned int i = 0; i < radii.size(); ++i)
-        if (!(radii[i] > 0.))
+      for (unsigned int i = 0; i < p.radii.size(); ++i)
+        if (!(p.radii[i] > 0.))
           throw InputError("entry 'Particles/Radius' has the value " +
-                           std::to_string(radii[i]) + " for particle " +
+                           std::to_string(p.radii[i]) + " for particle " +
                            std::to_string(i) + "; allowed: a radius > 0");
 
-      external_forces.clear();
+      p.external_forces.clear();
       const std::string forces_text = prm.get("External force");
       std::vector<std::array<double, 3>> forces;
       for (const std::string &item :
@@ -537,38 +585,144 @@ namespace Fidus
         if (!item.empty())
           forces.push_back(parse_point(item, "Particles/External force", dim));
       if (forces.size() == 1)
-        external_forces.assign(positions.size(), forces[0]);
-      else if (forces.size() == positions.size())
-        external_forces = forces;
+        p.external_forces.assign(p.positions.size(), forces[0]);
+      else if (forces.size() == p.positions.size())
+        p.external_forces = forces;
       else if (!forces.empty())
         throw InputError("entry 'Particles/External force' has " +
                          std::to_string(forces.size()) + " forces for " +
-                         std::to_string(positions.size()) +
+                         std::to_string(p.positions.size()) +
                          " particles; allowed: one force for all particles "
                          "or one per particle, separated by ';'");
       bool any_force = false;
-      for (const auto &f : external_forces)
+      for (const auto &f : p.external_forces)
         for (const double c : f)
           any_force = any_force || c != 0.;
       if (!any_force)
-        external_forces.clear();
+        p.external_forces.clear();
+    }
+
+
+
+    /// Contact: the model and its projection.
+    void
+    parse_contact(ParameterHandler &prm, Parameters &p)
+    {
+      prm.enter_subsection("Contact");
+      {
+        const std::string m = prm.get("Model");
+        p.contact_model     = m == "none"      ? ContactModel::none :
+                              m == "inelastic" ? ContactModel::inelastic :
+                                                 ContactModel::gluey;
+        p.walls             = prm.get_bool("Walls");
+        p.contact_tolerance = prm.get_double("Tolerance");
+        p.dual_solver       = prm.get("Dual solver");
+        p.alert_distance    = prm.get_double("Alert distance");
+        p.drag_coefficient  = prm.get_double("Drag coefficient");
+        p.roughness         = prm.get_double("Roughness");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    /// Time stepping.
+    void
+    parse_time_stepping(ParameterHandler &prm, Parameters &p)
+    {
+      prm.enter_subsection("Time stepping");
+      {
+        p.end_time               = prm.get_double("End time");
+        p.time_step              = prm.get_double("Time step");
+        p.adaptive_time_step     = prm.get_bool("Adaptive time step");
+        p.cfl_number             = prm.get_double("CFL number");
+        p.maximum_time_step      = prm.get_double("Maximum time step");
+        p.gap_step_fraction      = prm.get_double("Gap step fraction");
+        p.gap_step_floor         = prm.get_double("Gap step floor");
+        p.time_scheme            = prm.get("Scheme") == "trapezoidal" ?
+                                     TimeSchemeType::trapezoidal :
+                                     TimeSchemeType::ab2;
+        p.trapezoidal_iterations = prm.get_integer("Trapezoidal iterations");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    /// Mesh refinement.
+    void
+    parse_mesh_refinement(ParameterHandler &prm, Parameters &p)
+    {
+      prm.enter_subsection("Mesh refinement");
+      {
+        p.initial_global_refinement =
+          prm.get_integer("Initial global refinement");
+        p.minimum_level           = prm.get_integer("Minimum level");
+        p.maximum_level           = prm.get_integer("Maximum level");
+        p.interface_band          = prm.get_double("Interface band");
+        p.gap_refinement_distance = prm.get_double("Gap refinement distance");
+        p.remesh_fraction         = prm.get_double("Remesh fraction");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    /// Output.
+    void
+    parse_output(ParameterHandler &prm, Parameters &p)
+    {
+      prm.enter_subsection("Output");
+      {
+        p.field_output_interval = prm.get_integer("Field output interval");
+        p.particle_output_interval =
+          prm.get_integer("Particle output interval");
+        p.particle_csv_interval    = prm.get_integer("Particle CSV interval");
+        p.progress_interval        = prm.get_integer("Progress interval");
+        p.progress_wall_interval   = prm.get_double("Progress wall interval");
+        p.checkpoint_interval      = prm.get_integer("Checkpoint interval");
+        p.checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
+        const std::string v        = prm.get("Verbosity");
+        p.verbosity                = v == "quiet"  ? Verbosity::quiet :
+                                     v == "normal" ? Verbosity::normal :
+                                                     Verbosity::verbose;
+      }
+      prm.leave_subsection();
+    }
+
+
+
+  } // namespace
+
+
+
+  void
+  Parameters::parse(ParameterHandler &prm, const std::string &input_name)
+  {
+    dimension        = prm.get_integer("Dimension");
+    output_directory = prm.get("Output directory");
+
+    // Fluid entries whose 'auto' depends on the contact model, read below.
+    std::string shared_cells_choice, reuse_choice;
+    parse_domain(prm, *this);
+
+    prm.enter_subsection("Fluid");
+    parse_fluid(prm, *this, shared_cells_choice, reuse_choice);
+    parse_linear_solver(prm, *this);
+    prm.leave_subsection();
+
+    prm.enter_subsection("Particles");
+    {
+      const std::vector<double> given_radii =
+        parse_numbers(prm.get("Radius"), "Particles/Radius");
+      std::vector<double> file_radii;
+      parse_positions(prm, *this, input_name, file_radii);
+      parse_generator(prm, *this, given_radii, file_radii);
+      parse_radii_and_forces(prm, *this, given_radii, file_radii);
     }
     prm.leave_subsection();
 
-    prm.enter_subsection("Contact");
-    {
-      const std::string m = prm.get("Model");
-      contact_model       = m == "none"      ? ContactModel::none :
-                            m == "inelastic" ? ContactModel::inelastic :
-                                               ContactModel::gluey;
-      walls               = prm.get_bool("Walls");
-      contact_tolerance   = prm.get_double("Tolerance");
-      dual_solver         = prm.get("Dual solver");
-      alert_distance      = prm.get_double("Alert distance");
-      drag_coefficient    = prm.get_double("Drag coefficient");
-      roughness           = prm.get_double("Roughness");
-    }
-    prm.leave_subsection();
+    parse_contact(prm, *this);
 
     // The 'auto' choices of the fluid depend on the contact model: a pair
     // closer than a cell is released where something else keeps it apart.
@@ -579,48 +733,9 @@ namespace Fidus
     reuse_multiplier =
       reuse_choice == "auto" ? !release_shared_cells : reuse_choice == "true";
 
-    prm.enter_subsection("Time stepping");
-    {
-      end_time               = prm.get_double("End time");
-      time_step              = prm.get_double("Time step");
-      adaptive_time_step     = prm.get_bool("Adaptive time step");
-      cfl_number             = prm.get_double("CFL number");
-      maximum_time_step      = prm.get_double("Maximum time step");
-      gap_step_fraction      = prm.get_double("Gap step fraction");
-      gap_step_floor         = prm.get_double("Gap step floor");
-      time_scheme            = prm.get("Scheme") == "trapezoidal" ?
-                                 TimeSchemeType::trapezoidal :
-                                 TimeSchemeType::ab2;
-      trapezoidal_iterations = prm.get_integer("Trapezoidal iterations");
-    }
-    prm.leave_subsection();
-
-    prm.enter_subsection("Mesh refinement");
-    {
-      initial_global_refinement = prm.get_integer("Initial global refinement");
-      minimum_level             = prm.get_integer("Minimum level");
-      maximum_level             = prm.get_integer("Maximum level");
-      interface_band            = prm.get_double("Interface band");
-      gap_refinement_distance   = prm.get_double("Gap refinement distance");
-      remesh_fraction           = prm.get_double("Remesh fraction");
-    }
-    prm.leave_subsection();
-
-    prm.enter_subsection("Output");
-    {
-      field_output_interval    = prm.get_integer("Field output interval");
-      particle_output_interval = prm.get_integer("Particle output interval");
-      particle_csv_interval    = prm.get_integer("Particle CSV interval");
-      progress_interval        = prm.get_integer("Progress interval");
-      progress_wall_interval   = prm.get_double("Progress wall interval");
-      checkpoint_interval      = prm.get_integer("Checkpoint interval");
-      checkpoint_wall_interval = prm.get_double("Checkpoint wall interval");
-      const std::string v      = prm.get("Verbosity");
-      verbosity                = v == "quiet"  ? Verbosity::quiet :
-                                 v == "normal" ? Verbosity::normal :
-                                                 Verbosity::verbose;
-    }
-    prm.leave_subsection();
+    parse_time_stepping(prm, *this);
+    parse_mesh_refinement(prm, *this);
+    parse_output(prm, *this);
 
     check_scene();
   }
