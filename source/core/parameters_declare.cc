@@ -1,6 +1,6 @@
 // The entries of a fidus parameter file: names, defaults, patterns and the
-// documentation that --print-parameters shows. Reading them back and
-// checking the scene is in parameters.cc.
+// documentation that --print-parameters shows. Reading them back is in
+// parameters.cc, checking the scene as a whole in parameters_check.cc.
 
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/parameters.h>
@@ -78,12 +78,13 @@ namespace Fidus
           "(doc/cut_element.md).");
         prm.declare_entry(
           "Cut linear solver",
-          "automatic",
-          Patterns::Selection("automatic|direct|iterative"),
+          "auto",
+          Patterns::Selection("auto|automatic|direct|iterative"),
           "With 'cut finite element': 'direct' factorises the system (MUMPS); "
           "'iterative' runs FGMRES with a block preconditioner (a geometric "
           "multigrid V-cycle for the velocities and rigid motions) to the "
-          "relative residual 1e-10; 'automatic' is iterative in 3D above "
+          "relative residual 1e-10; 'auto' (or 'automatic', its former "
+          "name) is iterative in 3D above "
           "40000 unknowns, where the factorisation is slower and takes "
           "several GB, and direct otherwise (doc/cut_element.md, 'The "
           "iterative solver').");

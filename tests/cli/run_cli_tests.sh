@@ -235,5 +235,19 @@ if [ $status -ne 0 ] && [ ! -e "$work/out" ] && [ "$(grep -c '^fidus:' stderr.tx
    && grep -q "Fluid/Model' is 'cut finite element' on 2 MPI ranks; allowed: 1 rank" stderr.txt; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: cut element on 2 ranks (status $status)"; cat stderr.txt; fi
 
+# A setting that another one switches off is said, not silent: the
+# lubrication correction with rigid shared cells (a close pair is one rigid
+# doublet, beyond the correction's range) runs with one warning naming both
+# entries; with 'Shared cells = auto' it runs without it.
+for shared in rigid auto; do
+  { base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Shared cells = %s\nend\nsubsection Mesh refinement\n  set Maximum level = 5\nend\nsubsection Output\n  set Verbosity = quiet\nend\n' "$shared"; } > lub_$shared.prm
+  "$fidus" lub_$shared.prm > /dev/null 2> lub_$shared.stderr
+  echo $? > lub_$shared.status
+done
+if [ "$(cat lub_rigid.status)" = 0 ] && [ "$(cat lub_auto.status)" = 0 ] \
+   && grep -q "warning: 'Fluid/Lubrication correction' is true with 'Fluid/Shared cells = rigid'" lub_rigid.stderr \
+   && ! grep -q "Shared cells = rigid" lub_auto.stderr; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: lubrication with rigid shared cells not warned"; cat lub_rigid.stderr; fi
+
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
