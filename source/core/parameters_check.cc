@@ -30,6 +30,130 @@ namespace Fidus
       s << ")";
       return s.str();
     }
+
+
+
+    /// Every particle inside the box (its centre, along periodic axes).
+    void
+    check_inside_box(const Parameters &p)
+    {
+      const unsigned int dim     = p.dimension;
+      const char         axis[3] = {'x', 'y', 'z'};
+      // Every particle strictly inside the box; in the periodic directions of
+      // 'sliding walls' (all but y) the centre must be in the box, the
+      // particle may straddle the face.
+      for (unsigned int i = 0; i < p.positions.size(); ++i)
+        for (unsigned int d = 0; d < dim; ++d)
+          if (p.boundary_condition == BoundaryCondition::sliding_walls &&
+              d != 1)
+            {
+              if (p.positions[i][d] < p.lower_left[d] ||
+                  p.positions[i][d] >= p.upper_right[d])
+                {
+                  std::ostringstream s;
+                  s << "entry 'Particles/Positions': particle " << i << " at "
+                    << format_point(p.positions[i], dim)
+                    << " has its centre outside the periodic direction "
+                    << axis[d] << "; allowed: " << p.lower_left[d]
+                    << " <= " << axis[d] << " < " << p.upper_right[d];
+                  throw InputError(s.str());
+                }
+            }
+          else
+            {
+              const double lo = p.positions[i][d] - p.radii[i];
+              const double hi = p.positions[i][d] + p.radii[i];
+              if (lo < p.lower_left[d] || hi > p.upper_right[d])
+                {
+                  const bool         low = lo < p.lower_left[d];
+                  std::ostringstream s;
+                  s << "entry 'Particles/Positions': particle " << i << " at "
+                    << format_point(p.positions[i], dim) << " with radius "
+                    << p.radii[i] << " cuts or lies outside the box face "
+                    << axis[d] << " = "
+                    << (low ? p.lower_left[d] : p.upper_right[d])
+                    << "; allowed: every particle inside the box (Domain/Lower "
+                       "left, Domain/Upper right)";
+                  throw InputError(s.str());
+                }
+            }
+    }
+
+
+
+    /// No two particles overlap (nearest periodic images).
+    void
+    check_no_overlap(const Parameters &p)
+    {
+      const unsigned int dim = p.dimension;
+      // No two particles overlap: sweep along x so that the check stays
+      // O(N log N) for large suspensions. With 'sliding walls', x and z are
+      // periodic: distances use the nearest periodic image, and pairs across
+      // the x faces (which the sweep does not see) are checked separately.
+      if (p.positions.size() > 1)
+        {
+          const bool periodic =
+            p.boundary_condition == BoundaryCondition::sliding_walls;
+          const auto gap_between = [&](const unsigned int i,
+                                       const unsigned int j) {
+            double dist2 = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double dx = p.positions[j][d] - p.positions[i][d];
+                if (periodic && d != 1)
+                  {
+                    const double period = p.upper_right[d] - p.lower_left[d];
+                    dx -= period * std::round(dx / period);
+                  }
+                dist2 += dx * dx;
+              }
+            return std::sqrt(dist2) - p.radii[i] - p.radii[j];
+          };
+          const auto report =
+            [&](const unsigned int i, const unsigned int j, const double gap) {
+              std::ostringstream s;
+              s << "entry 'Particles/Positions': particles " << std::min(i, j)
+                << " and " << std::max(i, j) << " overlap by " << -gap;
+              if (periodic)
+                s << " (nearest periodic image; 'sliding walls' is periodic in "
+                     "x"
+                  << (dim == 3 ? " and z" : "") << ")";
+              s << "; allowed: non-overlapping particles (gap >= 0)";
+              throw InputError(s.str());
+            };
+
+          std::vector<unsigned int> order(p.positions.size());
+          std::iota(order.begin(), order.end(), 0u);
+          std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
+            return p.positions[a][0] < p.positions[b][0];
+          });
+          const double max_radius =
+            *std::max_element(p.radii.begin(), p.radii.end());
+          for (unsigned int k = 0; k < order.size(); ++k)
+            for (unsigned int l = k + 1; l < order.size(); ++l)
+              {
+                const unsigned int i = order[k], j = order[l];
+                if (p.positions[j][0] - p.positions[i][0] > 2 * max_radius)
+                  break;
+                const double gap = gap_between(i, j);
+                if (gap < 0.)
+                  report(i, j, gap);
+              }
+          if (periodic)
+            for (unsigned int k = 0;
+                 k < order.size() &&
+                 p.positions[order[k]][0] < p.lower_left[0] + 2 * max_radius;
+                 ++k)
+              for (unsigned int l = order.size();
+                   l-- > k + 1 && p.positions[order[l]][0] >
+                                    p.upper_right[0] - 2 * max_radius;)
+                {
+                  const double gap = gap_between(order[k], order[l]);
+                  if (gap < 0.)
+                    report(order[k], order[l], gap);
+                }
+        }
+    }
   } // namespace
 
 
@@ -131,109 +255,8 @@ namespace Fidus
                        "'exact rigid inclusion' scene; allowed: 'fictitious "
                        "domain'");
 
-    // Every particle strictly inside the box; in the periodic directions of
-    // 'sliding walls' (all but y) the centre must be in the box, the
-    // particle may straddle the face.
-    for (unsigned int i = 0; i < positions.size(); ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        if (boundary_condition == BoundaryCondition::sliding_walls && d != 1)
-          {
-            if (positions[i][d] < lower_left[d] ||
-                positions[i][d] >= upper_right[d])
-              {
-                std::ostringstream s;
-                s << "entry 'Particles/Positions': particle " << i << " at "
-                  << format_point(positions[i], dim)
-                  << " has its centre outside the periodic direction "
-                  << axis[d] << "; allowed: " << lower_left[d]
-                  << " <= " << axis[d] << " < " << upper_right[d];
-                throw InputError(s.str());
-              }
-          }
-        else
-          {
-            const double lo = positions[i][d] - radii[i];
-            const double hi = positions[i][d] + radii[i];
-            if (lo < lower_left[d] || hi > upper_right[d])
-              {
-                const bool         low = lo < lower_left[d];
-                std::ostringstream s;
-                s << "entry 'Particles/Positions': particle " << i << " at "
-                  << format_point(positions[i], dim) << " with radius "
-                  << radii[i] << " cuts or lies outside the box face "
-                  << axis[d] << " = " << (low ? lower_left[d] : upper_right[d])
-                  << "; allowed: every particle inside the box (Domain/Lower "
-                     "left, Domain/Upper right)";
-                throw InputError(s.str());
-              }
-          }
-
-    // No two particles overlap: sweep along x so that the check stays
-    // O(N log N) for large suspensions. With 'sliding walls', x and z are
-    // periodic: distances use the nearest periodic image, and pairs across
-    // the x faces (which the sweep does not see) are checked separately.
-    if (positions.size() > 1)
-      {
-        const bool periodic =
-          boundary_condition == BoundaryCondition::sliding_walls;
-        const auto gap_between = [&](const unsigned int i,
-                                     const unsigned int j) {
-          double dist2 = 0;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              double dx = positions[j][d] - positions[i][d];
-              if (periodic && d != 1)
-                {
-                  const double period = upper_right[d] - lower_left[d];
-                  dx -= period * std::round(dx / period);
-                }
-              dist2 += dx * dx;
-            }
-          return std::sqrt(dist2) - radii[i] - radii[j];
-        };
-        const auto report =
-          [&](const unsigned int i, const unsigned int j, const double gap) {
-            std::ostringstream s;
-            s << "entry 'Particles/Positions': particles " << std::min(i, j)
-              << " and " << std::max(i, j) << " overlap by " << -gap;
-            if (periodic)
-              s << " (nearest periodic image; 'sliding walls' is periodic in "
-                   "x"
-                << (dim == 3 ? " and z" : "") << ")";
-            s << "; allowed: non-overlapping particles (gap >= 0)";
-            throw InputError(s.str());
-          };
-
-        std::vector<unsigned int> order(positions.size());
-        std::iota(order.begin(), order.end(), 0u);
-        std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) {
-          return positions[a][0] < positions[b][0];
-        });
-        const double max_radius = *std::max_element(radii.begin(), radii.end());
-        for (unsigned int k = 0; k < order.size(); ++k)
-          for (unsigned int l = k + 1; l < order.size(); ++l)
-            {
-              const unsigned int i = order[k], j = order[l];
-              if (positions[j][0] - positions[i][0] > 2 * max_radius)
-                break;
-              const double gap = gap_between(i, j);
-              if (gap < 0.)
-                report(i, j, gap);
-            }
-        if (periodic)
-          for (unsigned int k = 0;
-               k < order.size() &&
-               positions[order[k]][0] < lower_left[0] + 2 * max_radius;
-               ++k)
-            for (unsigned int l = order.size();
-                 l-- > k + 1 &&
-                 positions[order[l]][0] > upper_right[0] - 2 * max_radius;)
-              {
-                const double gap = gap_between(order[k], order[l]);
-                if (gap < 0.)
-                  report(order[k], order[l], gap);
-              }
-      }
+    check_inside_box(*this);
+    check_no_overlap(*this);
 
     const auto require_gap = [&](const std::string &entry, const double gap) {
       if (lubrication && !(gap > 0.))
