@@ -133,7 +133,8 @@ main(int argc, char **argv)
   if (argc < 5)
     {
       std::fprintf(stderr,
-                   "usage: %s DIM N PHI pg|apg|pgs|pgs_subspace|all [STEPS]\n",
+                   "usage: %s DIM N PHI pg|apg|pgs|pgs_subspace|all [STEPS] "
+                   "[FRICTION]\n",
                    argv[0]);
       return 1;
     }
@@ -142,6 +143,10 @@ main(int argc, char **argv)
   const double      phi   = std::atof(argv[3]);
   const std::string which = argv[4];
   const int         steps = argc > 5 ? std::atoi(argv[5]) : 3;
+  // Coulomb friction (non-smooth Gauss-Seidel on translations and
+  // rotations, whatever the solver named); the predicted rotations are
+  // random, of the size of the predicted velocities over a radius.
+  const double mu = argc > 6 ? std::atof(argv[6]) : 0.;
 
   std::vector<std::pair<std::string, DualSolver>> solvers;
   if (which == "pg" || which == "all")
@@ -160,6 +165,14 @@ main(int argc, char **argv)
   std::vector<double>            radii(n, 1.);
   const double                   dt = 0.5; // dt max|u*| = a / 2
   std::vector<std::vector<Vec3>> predicted(steps, std::vector<Vec3>(n));
+  std::vector<std::vector<Vec3>> rotation(
+    steps,
+    std::vector<Vec3>(n, Vec3{{0., 0., 0.}}));
+  Random spin(777); // own sequence: the frictionless inputs stay as they were
+  for (auto &w : rotation)
+    for (std::size_t i = 0; i < n; ++i)
+      for (unsigned d = (dim == 3 ? 0 : 2); d < 3; ++d)
+        w[i][d] = spin.uniform(-1., 1.);
   for (auto &u : predicted)
     for (std::size_t i = 0; i < n; ++i)
       {
@@ -203,15 +216,19 @@ main(int argc, char **argv)
       settings.solver         = solver;
       settings.tolerance      = 1e-9;
       settings.max_iterations = 20000;
+      settings.friction       = mu;
       ContactProjector  projector(settings);
-      std::vector<Vec3> x     = x0, u;
+      std::vector<Vec3> x     = x0, u, w;
       double            total = 0., solve = 0., search = 0., residual = 0.;
       unsigned long     iterations = 0, rows = 0, active = 0;
       bool              converged = true;
       for (int s = 0; s < steps; ++s)
         {
           const double start = now();
-          const auto   st    = projector.project(x, radii, predicted[s], dt, u);
+          const auto   st =
+            mu > 0. ?
+                projector.project(x, radii, predicted[s], rotation[s], dt, u, w) :
+                projector.project(x, radii, predicted[s], dt, u);
           total += now() - start;
           solve += st.solve_seconds;
           search += st.search_seconds;

@@ -49,6 +49,11 @@ namespace Fidus::Contact
     gamma_.clear();
     rhs_.clear();
     diag_.clear();
+    offset_.clear();
+    lever_a_.clear();
+    lever_b_.clear();
+    lambda_t_.clear();
+    surface_a_.clear();
   }
 
 
@@ -63,6 +68,11 @@ namespace Fidus::Contact
     glued_.reserve(n);
     lambda_.reserve(n);
     gamma_.reserve(n);
+    offset_.reserve(n);
+    lever_a_.reserve(n);
+    lever_b_.reserve(n);
+    lambda_t_.reserve(n);
+    surface_a_.reserve(n);
   }
 
 
@@ -84,6 +94,25 @@ namespace Fidus::Contact
     // A warm start must be admissible for the dual problem.
     lambda_.push_back(glued ? lambda : std::max(lambda, 0.));
     gamma_.push_back(gamma);
+    offset_.push_back(0.);
+    lever_a_.push_back(0.);
+    lever_b_.push_back(0.);
+    lambda_t_.push_back(Vec3{{0., 0., 0.}});
+    surface_a_.push_back(Vec3{{0., 0., 0.}});
+  }
+
+
+
+  void
+  ConstraintSystem::set_contact_geometry(const double lever_a,
+                                         const double lever_b,
+                                         const double offset,
+                                         const Vec3  &surface_velocity_a)
+  {
+    lever_a_.back()   = lever_a;
+    lever_b_.back()   = lever_b;
+    offset_.back()    = offset;
+    surface_a_.back() = surface_velocity_a;
   }
 
 
@@ -107,8 +136,8 @@ namespace Fidus::Contact
     double r = 0.;
     for (std::size_t k = 0; k < size(); ++k)
       {
-        const double c =
-          gap_[k] / dt + relative_normal_velocity(u, a_[k], b_[k], e_[k]);
+        const double c = (gap_[k] - offset_[k]) / dt +
+                         relative_normal_velocity(u, a_[k], b_[k], e_[k]);
         double rk;
         if (glued_[k])
           rk = std::abs(c);
@@ -160,7 +189,7 @@ namespace Fidus::Contact
     diag_.resize(size());
     for (std::size_t k = 0; k < size(); ++k)
       {
-        rhs_[k]  = gap_[k] / dt;
+        rhs_[k]  = (gap_[k] - offset_[k]) / dt;
         diag_[k] = inv_w[a_[k]] + inv_w[b_[k]];
       }
 

@@ -141,6 +141,18 @@ namespace Fidus::Contact
       throw ContactError("glue_snap must be >= 0");
     if (!(settings.alert_distance >= 0.))
       throw ContactError("alert_distance must be >= 0");
+    if (!(settings.friction >= 0.) || !std::isfinite(settings.friction))
+      throw ContactError("friction coefficient " +
+                         std::to_string(settings.friction) +
+                         " is not allowed: it must be >= 0 and finite");
+    if (settings.friction > 0. && settings.model == Model::none)
+      throw ContactError("friction acts at contacts, and the contact model "
+                         "'none' has none: choose 'inelastic' or 'gluey', "
+                         "or friction 0");
+    if (!(settings.contact_distance >= 0.) || !(settings.contact_distance < 1.))
+      throw ContactError("contact distance " +
+                         std::to_string(settings.contact_distance) +
+                         " (in radii) is not allowed: it must lie in [0, 1)");
   }
 
 
@@ -235,6 +247,19 @@ namespace Fidus::Contact
 
 
 
+  void
+  ContactProjector::set_rotational_weights(
+    const std::vector<double> &new_weights)
+  {
+    for (std::size_t i = 0; i < new_weights.size(); ++i)
+      if (!(new_weights[i] > 0.) || !std::isfinite(new_weights[i]))
+        throw ContactError("rotational weight of particle " +
+                           std::to_string(i) + " must be positive and finite");
+    rotational_weights = new_weights;
+  }
+
+
+
   unsigned int
   ContactProjector::n_glued() const
   {
@@ -325,7 +350,13 @@ namespace Fidus::Contact
                                             10. * settings.tolerance;
 
     system.clear();
-    search.find_pairs(positions, radii, d_a, pairs);
+    // Rough particles touch at a gap of their contact distance: search
+    // that much further.
+    double a_max = 0.;
+    for (const double a : radii)
+      a_max = std::max(a_max, a);
+    const double d_search = d_a + settings.contact_distance * a_max;
+    search.find_pairs(positions, radii, d_search, pairs);
     system.reserve(pairs.size() + n / 4 + 16);
     glue_seen.assign(glue.entries().size(), 0);
     double min_gap = std::numeric_limits<double>::infinity();
@@ -394,6 +425,10 @@ namespace Fidus::Contact
               e[d] = m[d] / std::sqrt(m2);
         }
       system.add_row(i, j, e, gap, gamma < 0., lambda, gamma);
+      system.set_contact_geometry(radii[i],
+                                  radii[j],
+                                  settings.contact_distance *
+                                    std::min(radii[i], radii[j]));
     };
 
     auto add_wall = [&](const std::uint32_t i, const unsigned int w) {
@@ -405,6 +440,22 @@ namespace Fidus::Contact
       double lambda, gamma;
       warm(i, GlueState::wall_key(w), lambda, gamma);
       system.add_row(n + w, i, e, gap, gamma < 0., lambda, gamma);
+      // The wall's own velocity at the contact point, beyond the one
+      // velocity its body has (friction only).
+      Vec3 surface{{0., 0., 0.}};
+      if (wall_velocity && settings.friction > 0.)
+        {
+          Vec3 point        = positions[i];
+          point[wall.axis]  = wall.position;
+          const Vec3 v_wall = wall_velocity(wall, point);
+          for (unsigned d = 0; d < dim; ++d)
+            if (d != wall.axis)
+              surface[d] = v_wall[d] - wall.velocity[d];
+        }
+      system.set_contact_geometry(0.,
+                                  radii[i],
+                                  settings.contact_distance * radii[i],
+                                  surface);
     };
 
     for (const auto &p : pairs)
@@ -431,7 +482,7 @@ namespace Fidus::Contact
                 << allowed_overlap;
               throw ContactError(s.str());
             }
-          if (gap < d_a)
+          if (gap < d_search)
             add_wall(i, w);
         }
 
@@ -474,7 +525,8 @@ namespace Fidus::Contact
                         predicted,
                         dt,
                         corrected,
-                        &normal_positions);
+                        &normal_positions,
+                        {nullptr, nullptr});
   }
 
 
@@ -486,7 +538,79 @@ namespace Fidus::Contact
                             const double               dt,
                             std::vector<Vec3>         &corrected)
   {
-    return project_with(positions, radii, predicted, dt, corrected, nullptr);
+    return project_with(positions,
+                        radii,
+                        predicted,
+                        dt,
+                        corrected,
+                        nullptr,
+                        {nullptr, nullptr});
+  }
+
+
+
+  ProjectionStatistics
+  ContactProjector::project(const std::vector<Vec3>   &positions,
+                            const std::vector<double> &radii,
+                            const std::vector<Vec3>   &predicted,
+                            const std::vector<Vec3>   &predicted_rotation,
+                            const double               dt,
+                            std::vector<Vec3>         &corrected,
+                            std::vector<Vec3>         &corrected_rotation,
+                            const std::vector<Vec3>   *normal_positions)
+  {
+    if (normal_positions != nullptr &&
+        normal_positions->size() != positions.size())
+      throw ContactError("the glued pairs' normal positions have " +
+                         std::to_string(normal_positions->size()) +
+                         " entries for " + std::to_string(positions.size()) +
+                         " particles");
+    if (predicted_rotation.size() != positions.size())
+      throw ContactError(
+        "size mismatch: " + std::to_string(predicted_rotation.size()) +
+        " angular velocities for " + std::to_string(positions.size()) +
+        " particles");
+    for (std::size_t i = 0; i < predicted_rotation.size(); ++i)
+      for (unsigned d = 0; d < 3; ++d)
+        if (!std::isfinite(predicted_rotation[i][d]))
+          throw ContactError(
+            "predicted angular velocity of particle " + std::to_string(i) +
+            " is not finite: " + format_vector(predicted_rotation[i], 3));
+    return project_with(positions,
+                        radii,
+                        predicted,
+                        dt,
+                        corrected,
+                        normal_positions,
+                        {&predicted_rotation, &corrected_rotation});
+  }
+
+
+
+  ConstraintSystem::Result
+  ContactProjector::solve_rows(const double dt)
+  {
+    // Friction has one solver, Gauss-Seidel with the subspace step on the
+    // normal impulses, whatever the frictionless solver chosen.
+    if (settings.friction > 0.)
+      return system.solve_frictional(settings.friction,
+                                     u_star,
+                                     w_star,
+                                     inv_w,
+                                     inv_j,
+                                     dt,
+                                     settings.tolerance,
+                                     settings.max_iterations,
+                                     true,
+                                     u,
+                                     w);
+    return system.solve(settings.solver,
+                        u_star,
+                        inv_w,
+                        dt,
+                        settings.tolerance,
+                        settings.max_iterations,
+                        u);
   }
 
 
@@ -498,14 +622,26 @@ namespace Fidus::Contact
     const std::vector<Vec3>   &predicted,
     const double               dt,
     std::vector<Vec3>         &corrected,
-    const std::vector<Vec3>   *glued_normal_positions)
+    const std::vector<Vec3>   *glued_normal_positions,
+    const std::pair<const std::vector<Vec3> *, std::vector<Vec3> *> &rotation)
   {
     validate(positions, radii, predicted, dt);
-    const unsigned dim = settings.dimension;
-    const auto     n   = static_cast<std::uint32_t>(positions.size());
+    const unsigned dim      = settings.dimension;
+    const auto     n        = static_cast<std::uint32_t>(positions.size());
+    const bool     friction = settings.friction > 0.;
+    if (friction && rotation.first == nullptr)
+      throw ContactError("friction turns the particles: the projection needs "
+                         "their angular velocities (project() with "
+                         "rotations)");
+    if (!rotational_weights.empty() && rotational_weights.size() != n)
+      throw ContactError(
+        "size mismatch: " + std::to_string(rotational_weights.size()) +
+        " rotational weights for " + std::to_string(n) + " particles");
 
     ProjectionStatistics statistics;
     corrected = predicted;
+    if (rotation.first != nullptr)
+      *rotation.second = *rotation.first;
     if (settings.model == Model::none)
       {
         // No admissible set: nothing to search, nothing to remember.
@@ -533,10 +669,25 @@ namespace Fidus::Contact
     for (std::size_t w = 0; w < walls.size(); ++w)
       for (unsigned d = 0; d < dim; ++d)
         u_star[n + w][d] = walls[w].velocity[d];
+    if (friction)
+      {
+        // Rotations: a 2D particle turns about z only; walls do not turn.
+        w_star.assign(n + walls.size(), Vec3{{0., 0., 0.}});
+        inv_j.assign(n + walls.size(), 0.);
+        const double ratio = dim == 3 ? 4. / 3. : 1.;
+        for (std::uint32_t i = 0; i < n; ++i)
+          {
+            for (unsigned d = (dim == 3 ? 0 : 2); d < 3; ++d)
+              w_star[i][d] = (*rotation.first)[i][d];
+            inv_j[i] = rotational_weights.empty() ?
+                         inv_w[i] / (ratio * radii[i] * radii[i]) :
+                         1. / rotational_weights[i];
+          }
+      }
 
     const double factor = std::max(2., settings.alert_factor);
     double       d_a = std::max(settings.alert_distance, factor * dt * u_max);
-    check_periods(a_max, d_a);
+    check_periods(a_max, d_a + settings.contact_distance * a_max);
 
     ConstraintSystem::Result result;
     while (true)
@@ -550,13 +701,7 @@ namespace Fidus::Contact
 
         const auto         start_solve       = Clock::now();
         const unsigned int iterations_before = result.iterations;
-        result                               = system.solve(settings.solver,
-                              u_star,
-                              inv_w,
-                              dt,
-                              settings.tolerance,
-                              settings.max_iterations,
-                              u);
+        result                               = solve_rows(dt);
         result.iterations += iterations_before;
         statistics.solve_seconds += seconds_since(start_solve);
 
@@ -574,7 +719,7 @@ namespace Fidus::Contact
         ++statistics.n_search_repeats;
         // Before the glue state is touched, so that a throw leaves it as it
         // was.
-        check_periods(a_max, d_a);
+        check_periods(a_max, d_a + settings.contact_distance * a_max);
 
         // Warm start the repeated solve with what was just computed.
         std::vector<GlueState::Entry> entries;
@@ -609,6 +754,21 @@ namespace Fidus::Contact
     for (std::uint32_t i = 0; i < n; ++i)
       for (unsigned d = 0; d < dim; ++d)
         corrected[i][d] = u[i][d];
+    if (friction)
+      {
+        for (std::uint32_t i = 0; i < n; ++i)
+          (*rotation.second)[i] = w[i];
+        // Sliding: the tangential impulse on the cone's rim (to a relative
+        // 1e-9, far below any tolerance that matters).
+        for (std::size_t k = 0; k < system.size(); ++k)
+          {
+            const Vec3  &t = system.tangential_impulse(k);
+            const double r = settings.friction * system.lambda(k);
+            if (r > 0. && std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) >=
+                            (1. - 1e-9) * r)
+              ++statistics.n_sliding;
+          }
+      }
 
     statistics.n_constraints  = static_cast<unsigned int>(system.size());
     statistics.n_active       = n_active;

@@ -599,16 +599,18 @@ namespace Fidus
     {
       prm.enter_subsection("Contact");
       {
-        const std::string m = prm.get("Model");
-        p.contact_model     = m == "none"      ? ContactModel::none :
-                              m == "inelastic" ? ContactModel::inelastic :
-                                                 ContactModel::gluey;
-        p.walls             = prm.get_bool("Walls");
-        p.contact_tolerance = prm.get_double("Tolerance");
-        p.dual_solver       = prm.get("Dual solver");
-        p.alert_distance    = prm.get_double("Alert distance");
-        p.drag_coefficient  = prm.get_double("Drag coefficient");
-        p.roughness         = prm.get_double("Roughness");
+        const std::string m    = prm.get("Model");
+        p.contact_model        = m == "none"      ? ContactModel::none :
+                                 m == "inelastic" ? ContactModel::inelastic :
+                                                    ContactModel::gluey;
+        p.walls                = prm.get_bool("Walls");
+        p.contact_tolerance    = prm.get_double("Tolerance");
+        p.dual_solver          = prm.get("Dual solver");
+        p.alert_distance       = prm.get_double("Alert distance");
+        p.drag_coefficient     = prm.get_double("Drag coefficient");
+        p.roughness            = prm.get_double("Roughness");
+        p.rough_contact        = prm.get_bool("Rough contact");
+        p.friction_coefficient = prm.get_double("Friction coefficient");
       }
       prm.leave_subsection();
     }

@@ -258,6 +258,18 @@ namespace Fidus
     check_inside_box(*this);
     check_no_overlap(*this);
 
+    // Friction and rough contact act at contacts, which 'none' does not
+    // have: they would do nothing.
+    if (contact_model == ContactModel::none && friction_coefficient > 0.)
+      throw InputError("entry 'Contact/Friction coefficient' has the value " +
+                       std::to_string(friction_coefficient) +
+                       " with 'Contact/Model = none', which has no contacts; "
+                       "allowed: 0, or the model 'inelastic' or 'gluey'");
+    if (contact_model == ContactModel::none && rough_contact)
+      throw InputError("entry 'Contact/Rough contact' is true with "
+                       "'Contact/Model = none', which has no contacts; "
+                       "allowed: false, or the model 'inelastic' or 'gluey'");
+
     const auto require_gap = [&](const std::string &entry, const double gap) {
       if (lubrication && !(gap > 0.))
         {

@@ -598,6 +598,25 @@ namespace Fidus
           "below it count as this gap, so that the squeeze resistance stays "
           "finite and the contact model takes over. Between 0 and 1.");
         prm.declare_entry(
+          "Rough contact",
+          "false",
+          Patterns::Bool(),
+          "Whether the contact model holds the gaps at the roughness "
+          "(Contact/Roughness times the smaller radius; the radius for a "
+          "wall) rather than at zero, as asperities would: the contact model "
+          "then takes over at the gap where the lubrication correction "
+          "stops growing. Needs a contact model other than 'none'.");
+        prm.declare_entry(
+          "Friction coefficient",
+          "0",
+          Patterns::Double(0.),
+          "Coulomb friction coefficient mu of every contact, between "
+          "particles and with walls: a contact's tangential force is at most "
+          "mu times its normal force, opposes the slip when it slides and "
+          "stops the slip when it can. The projection then corrects the "
+          "rotations too (doc/theory/contact.md, 'Friction'). 0: "
+          "frictionless. Needs a contact model other than 'none'; >= 0.");
+        prm.declare_entry(
           "Drag coefficient",
           "0",
           Patterns::Double(0.),

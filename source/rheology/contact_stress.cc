@@ -27,7 +27,11 @@ namespace Fidus
     for (std::size_t k = 0; k < rows.size(); ++k)
       {
         const double lambda = rows.lambda(k);
-        if (lambda == 0.)
+        // The friction force (zero without friction) has no trace but adds
+        // to the shear stress and the normal-stress differences.
+        const Contact::Vec3 &t  = rows.tangential_impulse(k);
+        const bool has_friction = t[0] != 0. || t[1] != 0. || t[2] != 0.;
+        if (lambda == 0. && !has_friction)
           continue;
         const std::uint32_t bodies[2] = {rows.first(k), rows.second(k)};
         double              branch    = rows.gap(k);
@@ -43,8 +47,13 @@ namespace Fidus
           if (body < n)
             for (unsigned int i = 0; i < 3; ++i)
               for (unsigned int j = i; j < 3; ++j)
-                s[body][i][j] -=
-                  drag * lambda * branch * e[i] * e[j] / particles;
+                {
+                  s[body][i][j] -=
+                    drag * lambda * branch * e[i] * e[j] / particles;
+                  if (has_friction)
+                    s[body][i][j] -= drag * branch * 0.5 *
+                                     (e[i] * t[j] + t[i] * e[j]) / particles;
+                }
       }
     return s;
   }

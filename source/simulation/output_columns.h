@@ -47,7 +47,21 @@ namespace Fidus
               "lubrication_stresslet_xz",
               "lubrication_stresslet_yy",
               "lubrication_stresslet_yz",
-              "lubrication_stresslet_zz"};
+              "lubrication_stresslet_zz",
+              // The velocities the particle moved with in the step that
+              // ended at this row (after lubrication and contact; 0 in
+              // the row of step 0), and its orientation as a unit
+              // quaternion (2D: a turn by the angle about z).
+              "moved_ux",
+              "moved_uy",
+              "moved_uz",
+              "moved_omega_x",
+              "moved_omega_y",
+              "moved_omega_z",
+              "orientation_w",
+              "orientation_x",
+              "orientation_y",
+              "orientation_z"};
     }
 
     /// statistics.csv: the run's columns, the stress columns, then the
@@ -81,6 +95,8 @@ namespace Fidus
       // The largest per-particle rigidity residual (Fluid/Rigidity
       // measure), whichever measure the loop stops on.
       c.push_back("particle_rigidity_residual");
+      // Contacts whose friction force is on the rim of Coulomb's cone.
+      c.push_back("sliding_contacts");
       return c;
     }
   } // namespace OutputColumns

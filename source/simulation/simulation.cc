@@ -40,6 +40,8 @@ namespace Fidus
       cs.tolerance         = prm.contact_tolerance * a_min;
       cs.alert_distance    = prm.alert_distance * a_min;
       cs.overlap_tolerance = 2. * cs.tolerance;
+      cs.friction          = prm.friction_coefficient;
+      cs.contact_distance  = prm.rough_contact ? prm.roughness : 0.;
       return cs;
     }
 
@@ -146,6 +148,19 @@ namespace Fidus
     contact_drag = parameters.drag_coefficient > 0. ?
                      parameters.drag_coefficient :
                      isolated_drag(dim, parameters.viscosity, mean_radius);
+    // With friction the projection's metric is each particle's isolated
+    // resistance relative to that of the mean radius (so that a multiplier
+    // times contact_drag is still a force): 6 pi eta a and 8 pi eta a^3 for
+    // a sphere, 4 pi eta and 4 pi eta a^2 for a disc (the projector's
+    // default rotational weights). Without friction the seed's unit
+    // weights stay, and every result with them.
+    if (parameters.friction_coefficient > 0. && dim == 3)
+      {
+        std::vector<double> weights(n);
+        for (unsigned int i = 0; i < n; ++i)
+          weights[i] = parameters.radii[i] / mean_radius;
+        projector.set_weights(weights);
+      }
 
     if (root)
       std::filesystem::create_directories(prm.output_directory);

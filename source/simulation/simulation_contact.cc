@@ -23,14 +23,15 @@ namespace Fidus
     if (trial)
       glue = projector.glue_state().entries();
     add_lubrication(p, dt, trial);
+    // The tangential lubrication also changes how the particles turn, and
+    // friction in the projection turns them further.
+    w_corrected = lubrication ? w_lubricated : p.w;
     project_onto_admissible_set(lubrication ? u_lubricated : p.u,
                                 p.middle,
                                 dt,
                                 trial);
     if (trial)
       projector.restore_glue(glue);
-    // The tangential lubrication also changes how the particles turn.
-    w_corrected = lubrication ? w_lubricated : p.w;
     return u_corrected;
   }
 
@@ -155,7 +156,7 @@ namespace Fidus
         // changes nothing and one projection is enough.
         Contact::ProjectionStatistics &cst = record.projection;
         if (middle.empty() || projector.n_glued() == 0)
-          cst = projector.project(state.X, prm.radii, u, dt, u_corrected);
+          cst = project(u, nullptr, dt);
         else
           cst = project_with_normals_at_middle(u, middle, dt);
         state.totals.max_contact_iterations =
@@ -202,13 +203,14 @@ namespace Fidus
     // O(dt^3) off, and two or three repetitions take it to round-off.
     const std::vector<Contact::GlueState::Entry> glue =
       projector.glue_state().entries();
-    double length = 0.;
+    const std::vector<RunState::Vec3> w_start = w_corrected;
+    double                            length  = 0.;
     for (const double a : prm.radii)
       length = std::max(length, a);
     Contact::ProjectionStatistics cst;
     for (unsigned int repetition = 0;; ++repetition)
       {
-        cst = projector.project(state.X, prm.radii, u, dt, u_corrected, middle);
+        cst           = project(u, &middle, dt);
         double change = 0.;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int d = 0; d < dim; ++d)
@@ -234,7 +236,43 @@ namespace Fidus
             return cst;
           }
         projector.restore_glue(glue);
+        w_corrected = w_start;
       }
+  }
+
+
+
+  template <int dim>
+  Contact::ProjectionStatistics
+  Simulation<dim>::project(const std::vector<RunState::Vec3> &u,
+                           const std::vector<RunState::Vec3> *middle,
+                           const double                       dt)
+  {
+    // Friction turns the particles: w_corrected goes in as the predicted
+    // rotations and comes out corrected. Without friction the rotations
+    // are not the projection's business, and the call is the seed's.
+    if (contact_settings.friction > 0.)
+      {
+        // The walls slide with the shear rate of the middle of the step,
+        // at which the prediction is given (as in add_lubrication()).
+        const double rate = shear(state.time + 0.5 * dt);
+        projector.set_wall_velocity(
+          [this, rate](const Contact::Wall &wall, const Contact::Vec3 &point) {
+            return box.wall_velocity(wall, point, rate);
+          });
+        const std::vector<RunState::Vec3> w = w_corrected;
+        return projector.project(state.X,
+                                 prm.radii,
+                                 u,
+                                 w,
+                                 dt,
+                                 u_corrected,
+                                 w_corrected,
+                                 middle);
+      }
+    if (middle == nullptr)
+      return projector.project(state.X, prm.radii, u, dt, u_corrected);
+    return projector.project(state.X, prm.radii, u, dt, u_corrected, *middle);
   }
 
 

@@ -138,6 +138,7 @@ namespace Fidus
       double(record.lubrication.n_pairs + record.lubrication.n_wall_pairs));
     row.push_back(fs.rigid_velocity_change);
     row.push_back(fs.particle_rigidity_residual);
+    row.push_back(double(cst.n_sliding));
     statistics_csv->write_row(row);
 
     fluid->write_fields(s.step, s.time);
@@ -176,14 +177,30 @@ namespace Fidus
         const SymmetricTensor<2, 3> &h = record.hydrodynamic.stresslets[i];
         const SymmetricTensor<2, 3> &c = contact[i];
         const SymmetricTensor<2, 3> &l = lubricated[i];
-        particles_csv->write_row(
-          {double(s.step), s.time,    double(i),    s.X[i][0], s.X[i][1],
-           s.X[i][2],      s.U[i][0], s.U[i][1],    s.U[i][2], s.W[i][0],
-           s.W[i][1],      s.W[i][2], prm.radii[i], h[0][0],   h[0][1],
-           h[0][2],        h[1][1],   h[1][2],      h[2][2],   c[0][0],
-           c[0][1],        c[0][2],   c[1][1],      c[1][2],   c[2][2],
-           l[0][0],        l[0][1],   l[0][2],      l[1][1],   l[1][2],
-           l[2][2]});
+        const bool moved = u_corrected.size() == n && w_corrected.size() == n;
+        const RunState::Vec3  zero{{0., 0., 0.}};
+        const RunState::Vec3 &u = moved ? u_corrected[i] : zero;
+        const RunState::Vec3 &w = moved ? w_corrected[i] : zero;
+        std::array<double, 4> q{{1., 0., 0., 0.}};
+        if (dim == 2 && i < s.angle.size())
+          q = {
+            {std::cos(0.5 * s.angle[i]), 0., 0., std::sin(0.5 * s.angle[i])}};
+        else if (dim == 3 && i < s.quaternion.size())
+          q = s.quaternion[i];
+        particles_csv->write_row({double(s.step), s.time,    double(i),
+                                  s.X[i][0],      s.X[i][1], s.X[i][2],
+                                  s.U[i][0],      s.U[i][1], s.U[i][2],
+                                  s.W[i][0],      s.W[i][1], s.W[i][2],
+                                  prm.radii[i],   h[0][0],   h[0][1],
+                                  h[0][2],        h[1][1],   h[1][2],
+                                  h[2][2],        c[0][0],   c[0][1],
+                                  c[0][2],        c[1][1],   c[1][2],
+                                  c[2][2],        l[0][0],   l[0][1],
+                                  l[0][2],        l[1][1],   l[1][2],
+                                  l[2][2],        u[0],      u[1],
+                                  u[2],           w[0],      w[1],
+                                  w[2],           q[0],      q[1],
+                                  q[2],           q[3]});
       }
   }
 

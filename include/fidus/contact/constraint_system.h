@@ -26,6 +26,12 @@ namespace Fidus::Contact
    * A = G W^{-1} G^T, b = D/dt + G u*, subject to lambda_k >= 0 on unglued
    * rows; its gradient is c(lambda). All three solvers work matrix-free on
    * the rows: A is never formed.
+   *
+   * With Coulomb friction (solve_frictional()) each row also carries a
+   * tangential impulse lambda_t, perpendicular to e_k, and the bodies turn:
+   * the velocity of a body's surface at the contact point is u + omega x r
+   * with r = +lever_a e (first body) or -lever_b e (second body). See
+   * doc/theory/contact.md, "Friction".
    */
   class ConstraintSystem
   {
@@ -59,6 +65,69 @@ namespace Fidus::Contact
             bool          glued,
             double        lambda,
             double        gamma);
+
+    /**
+     * The geometry that only friction needs, for the row added last: the
+     * distances @p lever_a and @p lever_b from the bodies' centres to the
+     * contact point (the radii; 0 for a wall), and the contact distance
+     * @p offset (rough contact): the row then holds D - offset >= 0 rather
+     * than D >= 0, while gap() still returns the true gap D.
+     * @p surface_velocity_a is a velocity of the first body's surface at
+     * the contact point on top of its rigid motion (a wall whose velocity
+     * varies along it, such as a z wall in linear shear); it must be
+     * tangential, and only friction sees it.
+     */
+    void
+    set_contact_geometry(double      lever_a,
+                         double      lever_b,
+                         double      offset,
+                         const Vec3 &surface_velocity_a = {{0., 0., 0.}});
+
+    /**
+     * Solve the frictional problem: the rows as in solve(), and for every
+     * row a tangential impulse in Coulomb's cone |lambda_t| <= mu
+     * max(lambda_n, 0) that opposes the slip when the contact slides and
+     * stops it when the cone allows (exact Coulomb law, no relaxation).
+     * Non-smooth block Gauss-Seidel with the exact local solution of each
+     * contact (solve_frictional() in constraint_system_friction.cc).
+     *
+     * @p w_star are the predicted angular velocities (z component only in
+     * 2D), @p inv_j the inverse rotational weights (0 for walls); @p u and
+     * @p w receive the corrected velocities of all bodies. The normal
+     * multipliers start from those stored in the rows, the tangential ones
+     * from zero. With @p mu = 0 the result is the frictionless projection
+     * and the rotations are untouched. With @p subspace, every few sweeps
+     * the normal impulses take the frictionless subspace step with the
+     * tangential impulses frozen (see the implementation).
+     */
+    Result
+    solve_frictional(double                     mu,
+                     const std::vector<Vec3>   &u_star,
+                     const std::vector<Vec3>   &w_star,
+                     const std::vector<double> &inv_w,
+                     const std::vector<double> &inv_j,
+                     double                     dt,
+                     double                     tolerance,
+                     unsigned int               max_iterations,
+                     bool                       subspace,
+                     std::vector<Vec3>         &u,
+                     std::vector<Vec3>         &w);
+
+    /**
+     * Residual of the frictional problem for velocities @p u, @p w with the
+     * stored multipliers, in length units: dt times the largest change the
+     * exact local solution of one contact would make to its relative
+     * velocity, max(W_n |lambda_n' - lambda_n|, W_t |lambda_t' - lambda_t|).
+     * Zero exactly at a solution of the Coulomb problem; without friction
+     * it equals residual().
+     */
+    double
+    frictional_residual(double                     mu,
+                        const std::vector<Vec3>   &u,
+                        const std::vector<Vec3>   &w,
+                        const std::vector<double> &inv_w,
+                        const std::vector<double> &inv_j,
+                        double                     dt) const;
 
     /**
      * Solve the dual problem with @p solver, starting from the multipliers
@@ -119,6 +188,35 @@ namespace Fidus::Contact
     gap(const std::size_t k) const
     {
       return gap_[k];
+    }
+
+    /// Contact distance of row k (0 unless contact is rough).
+    double
+    offset(const std::size_t k) const
+    {
+      return offset_[k];
+    }
+
+    /// Distance from the first body's centre to the contact point.
+    double
+    lever_first(const std::size_t k) const
+    {
+      return lever_a_[k];
+    }
+
+    /// Distance from the second body's centre to the contact point.
+    double
+    lever_second(const std::size_t k) const
+    {
+      return lever_b_[k];
+    }
+
+    /// Tangential impulse of row k (zero without friction), acting on the
+    /// second body (the first receives its opposite), perpendicular to e_k.
+    const Vec3 &
+    tangential_impulse(const std::size_t k) const
+    {
+      return lambda_t_[k];
     }
 
     /// Whether row k is an equality (glued pair).
@@ -204,8 +302,13 @@ namespace Fidus::Contact
     std::vector<char>          glued_;
     std::vector<double>        lambda_;
     std::vector<double>        gamma_;
-    std::vector<double>        rhs_;  ///< D_k / dt
-    std::vector<double>        diag_; ///< A_kk = 1/w_a + 1/w_b
+    std::vector<double>        rhs_;       ///< (D_k - offset_k) / dt
+    std::vector<double>        diag_;      ///< A_kk = 1/w_a + 1/w_b
+    std::vector<double>        offset_;    ///< contact distance
+    std::vector<double>        lever_a_;   ///< centre to contact, first body
+    std::vector<double>        lever_b_;   ///< centre to contact, second body
+    std::vector<Vec3>          lambda_t_;  ///< tangential impulses
+    std::vector<Vec3>          surface_a_; ///< first body's surface velocity
   };
 } // namespace Fidus::Contact
 

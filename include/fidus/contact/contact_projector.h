@@ -7,6 +7,7 @@
 #include <fidus/contact/contact_types.h>
 #include <fidus/contact/glue_state.h>
 #include <fidus/contact/pair_search.h>
+#include <functional>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -78,6 +79,32 @@ namespace Fidus::Contact
     void
     set_weights(const std::vector<double> &weights);
 
+    /// A wall's velocity at a point on it, when it varies along the wall.
+    using WallVelocity =
+      std::function<Vec3(const Wall &wall, const Vec3 &point)>;
+
+    /**
+     * The velocity of each wall at each contact point, for friction (a z
+     * wall in linear shear moves with the flow at its height; Wall::velocity
+     * holds one velocity per wall). Empty: Wall::velocity everywhere. The
+     * velocity returned must be tangential to the wall.
+     */
+    void
+    set_wall_velocity(WallVelocity field)
+    {
+      wall_velocity = std::move(field);
+    }
+
+    /**
+     * Rotational weights j_i of the norm |v - u*|_W + |omega - omega*|_J,
+     * which only friction uses. An empty vector (the default) takes those of
+     * a particle whose rotational and translational resistances are an
+     * isolated sphere's (8 pi eta a^3 against 6 pi eta a, so j = 4/3 a^2 w
+     * in 3D) or disc's (4 pi eta a^2 against 4 pi eta, j = a^2 w in 2D).
+     */
+    void
+    set_rotational_weights(const std::vector<double> &weights);
+
     /**
      * Project predicted translational velocities onto K (numerics section 3)
      * for one step of size @p dt, then (gluey) update the glue state
@@ -148,6 +175,25 @@ namespace Fidus::Contact
             double                     dt,
             std::vector<Vec3>         &corrected,
             const std::vector<Vec3>   &glued_normal_positions);
+
+    /**
+     * Project translational and angular velocities: the same projection,
+     * and with Settings::friction > 0 the Coulomb friction of every contact
+     * (ConstraintSystem::solve_frictional()), which changes the rotations
+     * too. @p predicted_rotation holds one angular velocity per particle (z
+     * component only in 2D); @p corrected_rotation is resized and
+     * overwritten. @p glued_normal_positions as in the other project(), or
+     * null for the normals of @p positions.
+     */
+    ProjectionStatistics
+    project(const std::vector<Vec3>   &positions,
+            const std::vector<double> &radii,
+            const std::vector<Vec3>   &predicted,
+            const std::vector<Vec3>   &predicted_rotation,
+            double                     dt,
+            std::vector<Vec3>         &corrected,
+            std::vector<Vec3>         &corrected_rotation,
+            const std::vector<Vec3>   *glued_normal_positions = nullptr);
 
     /// Number of glued pairs (particle-particle and particle-wall).
     unsigned int
@@ -233,15 +279,22 @@ namespace Fidus::Contact
     void
     check_periods(double a_max, double d_a) const;
 
-    /// Both project(): glued rows take their normals at
-    /// @p glued_normal_positions unless it is null.
+    /// All project(): glued rows take their normals at
+    /// @p glued_normal_positions unless it is null; rotations are projected
+    /// when @p rotation holds the predicted and corrected ones.
     ProjectionStatistics
     project_with(const std::vector<Vec3>   &positions,
                  const std::vector<double> &radii,
                  const std::vector<Vec3>   &predicted,
                  double                     dt,
                  std::vector<Vec3>         &corrected,
-                 const std::vector<Vec3>   *glued_normal_positions);
+                 const std::vector<Vec3>   *glued_normal_positions,
+                 const std::pair<const std::vector<Vec3> *, std::vector<Vec3> *>
+                   &rotation);
+
+    /// Solve the assembled rows (with friction if it is on).
+    ConstraintSystem::Result
+    solve_rows(double dt);
 
     /// Build the rows for alert distance @p d_a (glued rows' normals at
     /// @p glued_normal_positions unless null); returns the smallest gap.
@@ -254,6 +307,8 @@ namespace Fidus::Contact
     Settings            settings;
     std::vector<Wall>   walls;
     std::vector<double> weights;
+    std::vector<double> rotational_weights;
+    WallVelocity        wall_velocity;
 
     PairSearch       search;
     GlueState        glue;
@@ -262,8 +317,8 @@ namespace Fidus::Contact
     /// Work arrays kept between calls.
     std::vector<PairSearch::Pair> pairs;
     std::vector<char>             glue_seen;
-    std::vector<Vec3>             u_star, u;
-    std::vector<double>           inv_w;
+    std::vector<Vec3>             u_star, u, w_star, w;
+    std::vector<double>           inv_w, inv_j;
   };
 } // namespace Fidus::Contact
 

@@ -80,14 +80,25 @@ namespace Fidus::Contact
     double alert_factor = 3.;
     /// Pair search algorithm.
     PairSearchMethod pair_search = PairSearchMethod::cell_list;
+    /// Coulomb friction coefficient mu >= 0 of every contact (pairs and
+    /// walls). 0 leaves the rotations untouched and the projection the
+    /// frictionless one; mu > 0 needs the angular velocities
+    /// (ContactProjector::project() with rotations).
+    double friction = 0.;
+    /// Rough contact: particles touch at a gap of contact_distance times
+    /// the smaller radius (a particle and a wall: its radius), 0 for smooth
+    /// spheres. Must lie in [0, 1).
+    double contact_distance = 0.;
   };
 
   /// What one projection did.
   struct ProjectionStatistics
   {
-    unsigned int n_constraints  = 0;
-    unsigned int n_active       = 0; ///< constraints with lambda != 0
-    unsigned int n_glued        = 0; ///< glued pairs after the step
+    unsigned int n_constraints = 0;
+    unsigned int n_active      = 0; ///< constraints with lambda != 0
+    unsigned int n_glued       = 0; ///< glued pairs after the step
+    /// Contacts that slide (tangential impulse on the rim of the cone).
+    unsigned int n_sliding      = 0;
     unsigned int iterations     = 0;
     double       residual       = 0.; ///< max constraint violation (length)
     bool         converged      = true;

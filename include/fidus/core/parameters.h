@@ -198,6 +198,11 @@ namespace Fidus
     /// Contact/Roughness: gaps below roughness * (smaller radius) count as
     /// that gap in the lubrication resistance.
     double roughness = 5e-3;
+    /// Contact/Friction coefficient: Coulomb's mu of every contact.
+    double friction_coefficient = 0.;
+    /// Contact/Rough contact: particles touch at a gap of roughness *
+    /// (smaller radius) instead of 0.
+    bool rough_contact = false;
 
     // Time stepping
     double         end_time               = 20.;

@@ -116,6 +116,13 @@ namespace Fidus
     project_with_normals_at_middle(const std::vector<Vec3> &predicted,
                                    std::vector<Vec3>       &middle,
                                    double                   dt);
+    /// One projection of @p u (and, with friction, of w_corrected) into
+    /// u_corrected (and w_corrected); glued rows' normals at @p middle
+    /// unless it is null.
+    Contact::ProjectionStatistics
+    project(const std::vector<Vec3> &u,
+            const std::vector<Vec3> *middle,
+            double                   dt);
     /// Move and turn the particles; wrap periodic faces; stop the run if
     /// a particle crossed a face where it cannot stay.
     void
