@@ -7,7 +7,9 @@
 # Usage: contrib/benchmarks/contact_projection.sh [BENCHMARK_BINARY] [STEPS]
 #   BENCHMARK_BINARY defaults to build/fidus_contact_benchmark
 #   (make fidus_contact_benchmark); STEPS projections averaged (default 3).
-# Environment: SOLVERS (default "pgs_subspace pgs apg pg"), SIZES, FRACTIONS.
+# Environment: SOLVERS (default "pgs_subspace pgs apg pg"), SIZES, FRACTIONS,
+#   FRICTION (default 0: Coulomb's mu; any value > 0 uses the frictional
+#   non-smooth Gauss-Seidel whatever the solver named).
 set -e
 BIN=${1:-build/fidus_contact_benchmark}
 STEPS=${2:-3}
@@ -24,7 +26,7 @@ for dim in 2 3; do
   for n in $SIZES; do
     for phi in $FRACTIONS; do
       for solver in $SOLVERS; do
-        "$BIN" $dim $n $phi $solver $STEPS |
+        "$BIN" $dim $n $phi $solver $STEPS ${FRICTION:-0} |
           awk '{ gsub(/\)/, "", $19); res = $27; if (NF > 27) res = res " NOT CONVERGED";
                  printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
                  $1, $2, $3, $4, $6, $8, $12, $14, $17, $19, $21, $24, res }'

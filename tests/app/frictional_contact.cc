@@ -116,6 +116,20 @@ namespace
                     std::abs(last(dir, "moved_uy", 0)),
                     0.,
                     tol);
+        // The contact stresslet -l (f_n e e + sym(e f_t)) with l = a: the
+        // friction force f_t (on the sphere, against its slip) gives
+        // S_xy = a f_t / 2, the normal force S_yy = -a F.
+        const double f_t =
+          factor >= 1. ? threshold : mu * force; // |friction force|
+        check_range(what.str() + "|contact stresslet xy - a f_t / 2|",
+                    std::abs(last(dir, "contact_stresslet_xy", 0) -
+                             0.5 * a * f_t),
+                    0.,
+                    1e-12 * a * force);
+        check_range(what.str() + "|contact stresslet yy + a F|",
+                    std::abs(last(dir, "contact_stresslet_yy", 0) + a * force),
+                    0.,
+                    1e-12 * a * force);
         if (factor >= 1.)
           check_range(
             what.str() + "sliding contacts",

@@ -96,6 +96,12 @@ expect_error "negative roughness" "Roughness" \
   "$(base; printf 'subsection Contact\n  set Roughness = -1\nend\n')"
 expect_error "negative drag coefficient" "Drag coefficient" \
   "$(base; printf 'subsection Contact\n  set Drag coefficient = -1\nend\n')"
+expect_error "negative friction coefficient" "Friction coefficient" \
+  "$(base; printf 'subsection Contact\n  set Friction coefficient = -0.5\nend\n')"
+expect_error "friction without contacts" "entry 'Contact/Friction coefficient' has the value 0.500000 with 'Contact/Model = none', which has no contacts; allowed: 0, or the model 'inelastic' or 'gluey'" \
+  "$(base; printf 'subsection Contact\n  set Model = none\n  set Friction coefficient = 0.5\nend\n')"
+expect_error "rough contact without contacts" "entry 'Contact/Rough contact' is true with 'Contact/Model = none', which has no contacts; allowed: false, or the model 'inelastic' or 'gluey'" \
+  "$(base; printf 'subsection Contact\n  set Model = none\n  set Rough contact = true\nend\n')"
 expect_error "penalty factor <= 1" "Penalty factor.*allowed: a value > 1" \
   "$(base; printf 'subsection Fluid\n  set Penalty factor = 1\nend\n')"
 expect_error "wrong number of coordinates" "Particles/Positions.*allowed: exactly 2 coordinates" \
@@ -185,8 +191,8 @@ done
 # (free-draining particles: no mesh, so that it takes no time).
 { base; printf 'subsection Fluid\n  set Model = undisturbed shear\nend\n'; } > run.prm
 "$fidus" run.prm > /dev/null 2>&1
-if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,time,id,x,y,z,ux,uy,uz,omega_x,omega_y,omega_z,radius,stresslet_xx,stresslet_xy,stresslet_xz,stresslet_yy,stresslet_yz,stresslet_zz,contact_stresslet_xx,contact_stresslet_xy,contact_stresslet_xz,contact_stresslet_yy,contact_stresslet_yz,contact_stresslet_zz,lubrication_stresslet_xx,lubrication_stresslet_xy,lubrication_stresslet_xz,lubrication_stresslet_yy,lubrication_stresslet_yz,lubrication_stresslet_zz$" \
-   && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds,.*,shear_stress,relative_viscosity,normal_stress_difference_1,normal_stress_difference_2,particle_pressure,contact_relative_viscosity,.*,lubrication_relative_viscosity,lubrication_particle_pressure,lubrication_pairs,rigid_velocity_change,particle_rigidity_residual$"; then
+if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,time,id,x,y,z,ux,uy,uz,omega_x,omega_y,omega_z,radius,stresslet_xx,stresslet_xy,stresslet_xz,stresslet_yy,stresslet_yz,stresslet_zz,contact_stresslet_xx,contact_stresslet_xy,contact_stresslet_xz,contact_stresslet_yy,contact_stresslet_yz,contact_stresslet_zz,lubrication_stresslet_xx,lubrication_stresslet_xy,lubrication_stresslet_xz,lubrication_stresslet_yy,lubrication_stresslet_yz,lubrication_stresslet_zz,moved_ux,moved_uy,moved_uz,moved_omega_x,moved_omega_y,moved_omega_z,orientation_w,orientation_x,orientation_y,orientation_z$" \
+   && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds,.*,shear_stress,relative_viscosity,normal_stress_difference_1,normal_stress_difference_2,particle_pressure,contact_relative_viscosity,.*,lubrication_relative_viscosity,lubrication_particle_pressure,lubrication_pairs,rigid_velocity_change,particle_rigidity_residual,sliding_contacts$"; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: output files of a good run"; fi
 
 # A particle carried out through an outflow face stops the run with a
