@@ -123,6 +123,22 @@ namespace Fidus::Contact
       e.lambda = system.lambda(k);
       return e;
     }
+    /// Contacts whose tangential impulse is on the rim of the cone (to a
+    /// relative 1e-9, far below any tolerance that matters): sliding.
+    unsigned int
+    count_sliding(const ConstraintSystem &system, const double mu)
+    {
+      unsigned int n = 0;
+      for (std::size_t k = 0; k < system.size(); ++k)
+        {
+          const Vec3  &t = system.tangential_impulse(k);
+          const double r = mu * system.lambda(k);
+          if (r > 0. && std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) >=
+                          (1. - 1e-9) * r)
+            ++n;
+        }
+      return n;
+    }
   } // namespace
 
 
@@ -440,22 +456,10 @@ namespace Fidus::Contact
       double lambda, gamma;
       warm(i, GlueState::wall_key(w), lambda, gamma);
       system.add_row(n + w, i, e, gap, gamma < 0., lambda, gamma);
-      // The wall's own velocity at the contact point, beyond the one
-      // velocity its body has (friction only).
-      Vec3 surface{{0., 0., 0.}};
-      if (wall_velocity && settings.friction > 0.)
-        {
-          Vec3 point        = positions[i];
-          point[wall.axis]  = wall.position;
-          const Vec3 v_wall = wall_velocity(wall, point);
-          for (unsigned d = 0; d < dim; ++d)
-            if (d != wall.axis)
-              surface[d] = v_wall[d] - wall.velocity[d];
-        }
       system.set_contact_geometry(0.,
                                   radii[i],
                                   settings.contact_distance * radii[i],
-                                  surface);
+                                  wall_surface_velocity(wall, positions[i]));
     };
 
     for (const auto &p : pairs)
@@ -615,6 +619,48 @@ namespace Fidus::Contact
 
 
 
+  void
+  ContactProjector::set_up_rotations(const std::vector<double> &radii,
+                                     const std::vector<Vec3>   &rotation)
+  {
+    // Rotations: a 2D particle turns about z only; walls do not turn.
+    const unsigned dim = settings.dimension;
+    const auto     n   = radii.size();
+    w_star.assign(n + walls.size(), Vec3{{0., 0., 0.}});
+    inv_j.assign(n + walls.size(), 0.);
+    const double ratio = dim == 3 ? 4. / 3. : 1.;
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        for (unsigned d = (dim == 3 ? 0 : 2); d < 3; ++d)
+          w_star[i][d] = rotation[i][d];
+        inv_j[i] = rotational_weights.empty() ?
+                     inv_w[i] / (ratio * radii[i] * radii[i]) :
+                     1. / rotational_weights[i];
+      }
+  }
+
+
+
+  Vec3
+  ContactProjector::wall_surface_velocity(const Wall &wall,
+                                          const Vec3 &centre) const
+  {
+    // The wall's own velocity at the contact point, beyond the one
+    // velocity its body has (friction only).
+    Vec3 surface{{0., 0., 0.}};
+    if (!wall_velocity || !(settings.friction > 0.))
+      return surface;
+    Vec3 point        = centre;
+    point[wall.axis]  = wall.position;
+    const Vec3 v_wall = wall_velocity(wall, point);
+    for (unsigned d = 0; d < settings.dimension; ++d)
+      if (d != wall.axis)
+        surface[d] = v_wall[d] - wall.velocity[d];
+    return surface;
+  }
+
+
+
   ProjectionStatistics
   ContactProjector::project_with(
     const std::vector<Vec3>   &positions,
@@ -670,20 +716,7 @@ namespace Fidus::Contact
       for (unsigned d = 0; d < dim; ++d)
         u_star[n + w][d] = walls[w].velocity[d];
     if (friction)
-      {
-        // Rotations: a 2D particle turns about z only; walls do not turn.
-        w_star.assign(n + walls.size(), Vec3{{0., 0., 0.}});
-        inv_j.assign(n + walls.size(), 0.);
-        const double ratio = dim == 3 ? 4. / 3. : 1.;
-        for (std::uint32_t i = 0; i < n; ++i)
-          {
-            for (unsigned d = (dim == 3 ? 0 : 2); d < 3; ++d)
-              w_star[i][d] = (*rotation.first)[i][d];
-            inv_j[i] = rotational_weights.empty() ?
-                         inv_w[i] / (ratio * radii[i] * radii[i]) :
-                         1. / rotational_weights[i];
-          }
-      }
+      set_up_rotations(radii, *rotation.first);
 
     const double factor = std::max(2., settings.alert_factor);
     double       d_a = std::max(settings.alert_distance, factor * dt * u_max);
@@ -758,16 +791,7 @@ namespace Fidus::Contact
       {
         for (std::uint32_t i = 0; i < n; ++i)
           (*rotation.second)[i] = w[i];
-        // Sliding: the tangential impulse on the cone's rim (to a relative
-        // 1e-9, far below any tolerance that matters).
-        for (std::size_t k = 0; k < system.size(); ++k)
-          {
-            const Vec3  &t = system.tangential_impulse(k);
-            const double r = settings.friction * system.lambda(k);
-            if (r > 0. && std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) >=
-                            (1. - 1e-9) * r)
-              ++statistics.n_sliding;
-          }
+        statistics.n_sliding = count_sliding(system, settings.friction);
       }
 
     statistics.n_constraints  = static_cast<unsigned int>(system.size());

@@ -292,6 +292,16 @@ namespace Fidus::Contact
                  const std::pair<const std::vector<Vec3> *, std::vector<Vec3> *>
                    &rotation);
 
+    /// The angular velocities and rotational weights of the bodies.
+    void
+    set_up_rotations(const std::vector<double> &radii,
+                     const std::vector<Vec3>   &rotation);
+
+    /// The velocity of @p wall at the contact of the particle centred at
+    /// @p centre, beyond Wall::velocity (zero without friction).
+    Vec3
+    wall_surface_velocity(const Wall &wall, const Vec3 &centre) const;
+
     /// Solve the assembled rows (with friction if it is on).
     ConstraintSystem::Result
     solve_rows(double dt);
