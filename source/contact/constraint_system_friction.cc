@@ -233,6 +233,10 @@ namespace Fidus::Contact
         // Sweeps alternate direction, as in the frictionless Gauss-Seidel,
         // so that a chain of contacts is resolved as fast from either end.
         const bool forward = (result.iterations % 2 == 0);
+        // The largest local change of the sweep, in the residual's units:
+        // while it is above the tolerance, it stands for the residual,
+        // whose evaluation costs most of a sweep.
+        double change = 0.;
         for (std::size_t i = 0; i < m; ++i)
           {
             const std::size_t   k = forward ? i : m - 1 - i;
@@ -257,6 +261,9 @@ namespace Fidus::Contact
             for (unsigned d = 0; d < 3; ++d)
               dt_change[d] = next.t[d] - old.t[d];
             const double dn_change = next.n - old.n;
+            change                 = std::max({change,
+                                               diag_[k] * std::abs(dn_change),
+                                               w_t[k] * norm(dt_change)});
             if (dn_change != 0. || dt_change != zero)
               {
                 lambda_[k]   = next.n;
@@ -275,9 +282,12 @@ namespace Fidus::Contact
               }
           }
         ++result.iterations;
-        result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
-        if (subspace && result.residual > tolerance &&
-            result.iterations % sweeps_per_subspace_step == 0)
+        const bool subspace_due =
+          subspace && result.iterations % sweeps_per_subspace_step == 0;
+        result.residual = change * dt;
+        if (result.residual <= tolerance || subspace_due)
+          result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
+        if (subspace_due && result.residual > tolerance)
           {
             // The sweeps converge like Gauss-Seidel, in O(L^2) sweeps for
             // the long-range compression of a jammed packing. That error is
