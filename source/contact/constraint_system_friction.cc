@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fidus/contact/constraint_system.h>
+#include <fidus/contact/vector_operations.h>
 
 // Coulomb friction in the projection (doc/theory/contact.md, "Friction"):
 // the non-smooth block Gauss-Seidel method of Moreau and Jean, with the
@@ -21,20 +22,6 @@ namespace Fidus::Contact
 {
   namespace
   {
-    inline Vec3
-    cross(const Vec3 &x, const Vec3 &y)
-    {
-      return Vec3{{x[1] * y[2] - x[2] * y[1],
-                   x[2] * y[0] - x[0] * y[2],
-                   x[0] * y[1] - x[1] * y[0]}};
-    }
-
-    inline double
-    norm(const Vec3 &x)
-    {
-      return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-    }
-
     /// One contact's impulse.
     struct Impulse
     {
@@ -137,6 +124,43 @@ namespace Fidus::Contact
 
 
 
+  void
+  ConstraintSystem::local_coulomb(const std::size_t        k,
+                                  const double             mu,
+                                  const double             w_n,
+                                  const double             w_t,
+                                  const double             rhs,
+                                  const std::vector<Vec3> &u,
+                                  const std::vector<Vec3> &w,
+                                  double                  &n,
+                                  Vec3                    &t) const
+  {
+    double c;
+    Vec3   v_t;
+    contact_velocity(u,
+                     w,
+                     a_[k],
+                     b_[k],
+                     e_[k],
+                     lever_a_[k],
+                     lever_b_[k],
+                     surface_a_[k],
+                     rhs,
+                     c,
+                     v_t);
+    const Impulse next = local_solution(c,
+                                        v_t,
+                                        Impulse{lambda_[k], lambda_t_[k]},
+                                        w_n,
+                                        w_t,
+                                        glued_[k] != 0,
+                                        mu);
+    n                  = next.n;
+    t                  = next.t;
+  }
+
+
+
   double
   ConstraintSystem::frictional_residual(const double               mu,
                                         const std::vector<Vec3>   &u,
@@ -152,22 +176,17 @@ namespace Fidus::Contact
         const double        w_n = inv_w[a] + inv_w[b];
         const double        w_t = w_n + lever_a_[k] * lever_a_[k] * inv_j[a] +
                            lever_b_[k] * lever_b_[k] * inv_j[b];
-        double c;
-        Vec3   v_t;
-        contact_velocity(u,
-                         w,
-                         a,
-                         b,
-                         e_[k],
-                         lever_a_[k],
-                         lever_b_[k],
-                         surface_a_[k],
-                         (gap_[k] - offset_[k]) / dt,
-                         c,
-                         v_t);
         const Impulse old{lambda_[k], lambda_t_[k]};
-        const Impulse next =
-          local_solution(c, v_t, old, w_n, w_t, glued_[k] != 0, mu);
+        Impulse       next;
+        local_coulomb(k,
+                      mu,
+                      w_n,
+                      w_t,
+                      (gap_[k] - offset_[k]) / dt,
+                      u,
+                      w,
+                      next.n,
+                      next.t);
         Vec3 change;
         for (unsigned d = 0; d < 3; ++d)
           change[d] = next.t[d] - old.t[d];
@@ -241,22 +260,17 @@ namespace Fidus::Contact
           {
             const std::size_t   k = forward ? i : m - 1 - i;
             const std::uint32_t a = a_[k], b = b_[k];
-            double              c;
-            Vec3                v_t;
-            contact_velocity(u,
-                             w,
-                             a,
-                             b,
-                             e_[k],
-                             lever_a_[k],
-                             lever_b_[k],
-                             surface_a_[k],
-                             rhs_[k],
-                             c,
-                             v_t);
-            const Impulse old{lambda_[k], lambda_t_[k]};
-            const Impulse next =
-              local_solution(c, v_t, old, diag_[k], w_t[k], glued_[k], mu);
+            const Impulse       old{lambda_[k], lambda_t_[k]};
+            Impulse             next;
+            local_coulomb(k,
+                          mu,
+                          diag_[k],
+                          w_t[k],
+                          rhs_[k],
+                          u,
+                          w,
+                          next.n,
+                          next.t);
             Vec3 dt_change;
             for (unsigned d = 0; d < 3; ++d)
               dt_change[d] = next.t[d] - old.t[d];

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <fidus/contact/contact_projector.h>
+#include <fidus/contact/vector_operations.h>
 #include <sstream>
 
 namespace Fidus::Contact
@@ -131,13 +132,43 @@ namespace Fidus::Contact
       unsigned int n = 0;
       for (std::size_t k = 0; k < system.size(); ++k)
         {
-          const Vec3  &t = system.tangential_impulse(k);
           const double r = mu * system.lambda(k);
-          if (r > 0. && std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) >=
-                          (1. - 1e-9) * r)
+          if (r > 0. && norm(system.tangential_impulse(k)) >= (1. - 1e-9) * r)
             ++n;
         }
       return n;
+    }
+    /// The error of particles @p i and @p j overlapping by -@p gap at the
+    /// start of a step, along the minimum-image separation @p e.
+    std::string
+    pair_overlap_message(const std::uint32_t        i,
+                         const std::uint32_t        j,
+                         const double               gap,
+                         const Vec3                &e,
+                         const std::vector<Vec3>   &positions,
+                         const std::vector<double> &radii,
+                         const unsigned int         dim,
+                         const double               allowed_overlap)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << "particles " << i << " and " << j << " overlap by " << -gap
+        << " (gap D = " << gap << ", centres "
+        << format_vector(positions[i], dim) << " and "
+        << format_vector(positions[j], dim) << ", radii " << radii[i] << " and "
+        << radii[j] << ")";
+      // Across a periodic face the centres alone mislead: name the
+      // nearest-image separation that the gap was measured along.
+      bool wrapped = false;
+      for (unsigned d = 0; d < dim; ++d)
+        wrapped |= std::abs(e[d] - (positions[j][d] - positions[i][d])) >
+                   1e-12 * (1. + std::abs(e[d]));
+      if (wrapped)
+        s << " across a periodic face (nearest-image separation "
+          << format_vector(e, dim) << ")";
+      s << " at the start of the step; the allowed overlap is "
+        << allowed_overlap;
+      return s.str();
     }
   } // namespace
 
@@ -402,27 +433,14 @@ namespace Fidus::Contact
       const double gap = r - radii[i] - radii[j];
       min_gap          = std::min(min_gap, gap);
       if (gap < -allowed_overlap || r == 0.)
-        {
-          std::ostringstream s;
-          s.precision(6);
-          s << "particles " << i << " and " << j << " overlap by " << -gap
-            << " (gap D = " << gap << ", centres "
-            << format_vector(positions[i], dim) << " and "
-            << format_vector(positions[j], dim) << ", radii " << radii[i]
-            << " and " << radii[j] << ")";
-          // Across a periodic face the centres alone mislead: name the
-          // nearest-image separation that the gap was measured along.
-          bool wrapped = false;
-          for (unsigned d = 0; d < dim; ++d)
-            wrapped |= std::abs(e[d] - (positions[j][d] - positions[i][d])) >
-                       1e-12 * (1. + std::abs(e[d]));
-          if (wrapped)
-            s << " across a periodic face (nearest-image separation "
-              << format_vector(e, dim) << ")";
-          s << " at the start of the step; the allowed overlap is "
-            << allowed_overlap;
-          throw ContactError(s.str());
-        }
+        throw ContactError(pair_overlap_message(i,
+                                                j,
+                                                gap,
+                                                e,
+                                                positions,
+                                                radii,
+                                                dim,
+                                                allowed_overlap));
       for (unsigned d = 0; d < dim; ++d)
         e[d] /= r;
       double lambda, gamma;

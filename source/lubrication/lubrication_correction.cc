@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fidus/contact/contact_error.h>
+#include <fidus/contact/vector_operations.h>
 #include <fidus/lubrication/lubrication_correction.h>
 #include <string>
 
@@ -13,20 +14,6 @@ namespace Fidus::Contact
     /// Per bond, the generalised velocities or loads of its two particles:
     /// U_i, w_i, U_j, w_j (the last six unused for a wall).
     using Local = std::array<double, 12>;
-
-    double
-    dot(const Vec3 &a, const Vec3 &b)
-    {
-      return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    }
-
-    Vec3
-    cross(const Vec3 &a, const Vec3 &b)
-    {
-      return {{a[1] * b[2] - a[2] * b[1],
-               a[2] * b[0] - a[0] * b[2],
-               a[0] * b[1] - a[1] * b[0]}};
-    }
 
     Vec3
     part(const Local &l, const unsigned int k)

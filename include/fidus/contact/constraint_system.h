@@ -277,6 +277,22 @@ namespace Fidus::Contact
                        bool                       subspace,
                        std::vector<Vec3>         &u);
 
+    /**
+     * Coulomb's law for row @p k alone, the other rows' impulses frozen:
+     * the exact solution (@p n, @p t) for velocities @p u, @p w, local
+     * block diag(@p w_n, @p w_t, @p w_t) and gap term @p rhs.
+     */
+    void
+    local_coulomb(std::size_t              k,
+                  double                   mu,
+                  double                   w_n,
+                  double                   w_t,
+                  double                   rhs,
+                  const std::vector<Vec3> &u,
+                  const std::vector<Vec3> &w,
+                  double                  &n,
+                  Vec3                    &t) const;
+
     /// Conjugate-gradient step on the rows that are currently active.
     void
     subspace_step(const std::vector<Vec3>   &u_star,
