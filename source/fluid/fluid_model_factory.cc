@@ -13,7 +13,7 @@ namespace Fidus
                      dealii::TimerOutput    &timer,
                      WarningLog             &warnings)
   {
-    switch (prm.fluid_model)
+    switch (prm.fluid.model)
       {
         case FluidModelType::fictitious_domain:
           return std::make_unique<FictitiousDomainModel<dim>>(prm,

@@ -9,15 +9,17 @@ namespace Fidus
   {
     for (unsigned int d = 0; d < dim; ++d)
       {
-        lo[d] = prm.lower_left[d];
-        hi[d] = prm.upper_right[d];
+        lo[d] = prm.domain.lower_left[d];
+        hi[d] = prm.domain.upper_right[d];
       }
     y_mid  = 0.5 * (lo[1] + hi[1]);
-    cavity = prm.boundary_condition == BoundaryCondition::cavity;
-    if (!prm.radii.empty())
+    cavity = prm.domain.boundary_condition == BoundaryCondition::cavity;
+    if (!prm.particles.radii.empty())
       {
-        a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
-        a_max = *std::max_element(prm.radii.begin(), prm.radii.end());
+        a_min = *std::min_element(prm.particles.radii.begin(),
+                                  prm.particles.radii.end());
+        a_max = *std::max_element(prm.particles.radii.begin(),
+                                  prm.particles.radii.end());
       }
     smallest_side = prm.smallest_side();
     h_finest      = prm.finest_cell_size();
@@ -32,12 +34,14 @@ namespace Fidus
       }
     const double h_coarsest =
       std::sqrt(coarse_diameter2) /
-      std::pow(2., std::min(prm.initial_global_refinement, prm.minimum_level));
-    query_reach =
-      std::max((prm.interface_band + 0.5) * h_coarsest,
-               prm.gap_refinement_distance * a_max + 0.5 * h_coarsest);
+      std::pow(2.,
+               std::min(prm.refinement.initial_global_refinement,
+                        prm.refinement.minimum_level));
+    query_reach = std::max((prm.refinement.interface_band + 0.5) * h_coarsest,
+                           prm.refinement.gap_refinement_distance * a_max +
+                             0.5 * h_coarsest);
 
-    if (prm.boundary_condition == BoundaryCondition::sliding_walls)
+    if (prm.domain.boundary_condition == BoundaryCondition::sliding_walls)
       for (unsigned int d = 0; d < dim; ++d)
         if (d != 1)
           {
@@ -56,12 +60,15 @@ namespace Fidus
     // the y faces always; x and z faces for the cavity; z faces in linear
     // shear (u = g (y - y_mid) e_x is tangential there).
     is_wall_axis.assign(dim, false);
-    if (prm.boundary_condition != BoundaryCondition::exact_rigid_inclusion)
+    if (prm.domain.boundary_condition !=
+        BoundaryCondition::exact_rigid_inclusion)
       for (unsigned int d = 0; d < dim; ++d)
         is_wall_axis[d] =
-          d == 1 || prm.boundary_condition == BoundaryCondition::cavity ||
-          (prm.boundary_condition == BoundaryCondition::linear_shear && d == 2);
-    if (prm.walls)
+          d == 1 ||
+          prm.domain.boundary_condition == BoundaryCondition::cavity ||
+          (prm.domain.boundary_condition == BoundaryCondition::linear_shear &&
+           d == 2);
+    if (prm.contact.walls)
       for (unsigned int d = 0; d < dim; ++d)
         if (is_wall_axis[d])
           for (const int side : {1, -1})

@@ -154,12 +154,13 @@ namespace Fidus
     a.put(format_version);
     a.put<std::uint32_t>(prm.dimension);
     a.put<std::uint32_t>(n_ranks);
-    a.put(prm.radii);
-    a.put(prm.lower_left);
-    a.put(prm.upper_right);
-    a.put<std::int32_t>(static_cast<std::int32_t>(prm.boundary_condition));
-    a.put<std::int32_t>(static_cast<std::int32_t>(prm.fluid_model));
-    a.put<std::uint32_t>(prm.velocity_degree);
+    a.put(prm.particles.radii);
+    a.put(prm.domain.lower_left);
+    a.put(prm.domain.upper_right);
+    a.put<std::int32_t>(
+      static_cast<std::int32_t>(prm.domain.boundary_condition));
+    a.put<std::int32_t>(static_cast<std::int32_t>(prm.fluid.model));
+    a.put<std::uint32_t>(prm.fluid.velocity_degree);
 
     // The mesh files written by Triangulation::save, with their sizes and
     // checksums, so that resume can tell a truncated one before p4est reads
@@ -261,16 +262,16 @@ namespace Fidus
                "Dimension = " + std::to_string(dimension));
     a.get<std::uint32_t>(); // ranks that wrote it: any number may resume
     const std::vector<double> radii = a.get_vector<double>();
-    if (radii.size() != prm.radii.size())
+    if (radii.size() != prm.particles.radii.size())
       mismatch("Particles/Positions",
-               std::to_string(prm.radii.size()) + " particles",
+               std::to_string(prm.particles.radii.size()) + " particles",
                r.folder,
                std::to_string(radii.size()) + " particles");
     for (std::size_t i = 0; i < radii.size(); ++i)
-      if (radii[i] != prm.radii[i])
+      if (radii[i] != prm.particles.radii[i])
         {
           std::ostringstream v, s;
-          v << std::setprecision(15) << "radius " << prm.radii[i]
+          v << std::setprecision(15) << "radius " << prm.particles.radii[i]
             << " for particle " << i;
           s << std::setprecision(15) << "radius " << radii[i]
             << " for particle " << i;
@@ -278,34 +279,35 @@ namespace Fidus
         }
     const auto lower = a.get<std::array<double, 3>>();
     const auto upper = a.get<std::array<double, 3>>();
-    if (lower != prm.lower_left)
+    if (lower != prm.domain.lower_left)
       mismatch("Domain/Lower left",
-               point_text(prm.lower_left, prm.dimension),
+               point_text(prm.domain.lower_left, prm.dimension),
                r.folder,
                point_text(lower, prm.dimension));
-    if (upper != prm.upper_right)
+    if (upper != prm.domain.upper_right)
       mismatch("Domain/Upper right",
-               point_text(prm.upper_right, prm.dimension),
+               point_text(prm.domain.upper_right, prm.dimension),
                r.folder,
                point_text(upper, prm.dimension));
     const auto boundary = a.get<std::int32_t>();
-    if (boundary != static_cast<std::int32_t>(prm.boundary_condition))
-      mismatch("Domain/Boundary condition",
-               std::string("'") +
-                 boundary_names[static_cast<int>(prm.boundary_condition)] + "'",
-               r.folder,
-               std::string("'") + boundary_names[boundary] + "'");
+    if (boundary != static_cast<std::int32_t>(prm.domain.boundary_condition))
+      mismatch(
+        "Domain/Boundary condition",
+        std::string("'") +
+          boundary_names[static_cast<int>(prm.domain.boundary_condition)] + "'",
+        r.folder,
+        std::string("'") + boundary_names[boundary] + "'");
     const auto fluid = a.get<std::int32_t>();
-    if (fluid != static_cast<std::int32_t>(prm.fluid_model))
+    if (fluid != static_cast<std::int32_t>(prm.fluid.model))
       mismatch("Fluid/Model",
                std::string("'") +
-                 fluid_names[static_cast<int>(prm.fluid_model)] + "'",
+                 fluid_names[static_cast<int>(prm.fluid.model)] + "'",
                r.folder,
                std::string("'") + fluid_names[fluid] + "'");
     const auto degree = a.get<std::uint32_t>();
-    if (degree != prm.velocity_degree)
+    if (degree != prm.fluid.velocity_degree)
       mismatch("Fluid/Velocity degree",
-               std::to_string(prm.velocity_degree),
+               std::to_string(prm.fluid.velocity_degree),
                r.folder,
                "Velocity degree = " + std::to_string(degree));
 
@@ -337,7 +339,7 @@ namespace Fidus
     if (!a.at_end())
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' holds more than a checkpoint (damaged)");
-    if (r.state.X.size() != prm.radii.size())
+    if (r.state.X.size() != prm.particles.radii.size())
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' is inconsistent (damaged)");
 

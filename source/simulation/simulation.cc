@@ -23,25 +23,27 @@ namespace Fidus
     contact_settings_of(const Parameters &prm, const unsigned int dim)
     {
       double a_min = 1.;
-      if (!prm.radii.empty())
-        a_min = *std::min_element(prm.radii.begin(), prm.radii.end());
+      if (!prm.particles.radii.empty())
+        a_min = *std::min_element(prm.particles.radii.begin(),
+                                  prm.particles.radii.end());
       Contact::Settings cs;
       cs.dimension         = dim;
-      cs.model             = prm.contact_model == ContactModel::none ?
+      cs.model             = prm.contact.model == ContactModel::none ?
                                Contact::Model::none :
-                             prm.contact_model == ContactModel::inelastic ?
+                             prm.contact.model == ContactModel::inelastic ?
                                Contact::Model::inelastic :
                                Contact::Model::gluey;
-      cs.solver            = prm.dual_solver == "projected gradient" ?
+      cs.solver            = prm.contact.dual_solver == "projected gradient" ?
                                Contact::DualSolver::projected_gradient :
-                             prm.dual_solver == "accelerated projected gradient" ?
+                             prm.contact.dual_solver == "accelerated projected gradient" ?
                                Contact::DualSolver::accelerated_projected_gradient :
                                Contact::DualSolver::projected_gauss_seidel;
-      cs.tolerance         = prm.contact_tolerance * a_min;
-      cs.alert_distance    = prm.alert_distance * a_min;
+      cs.tolerance         = prm.contact.tolerance * a_min;
+      cs.alert_distance    = prm.contact.alert_distance * a_min;
       cs.overlap_tolerance = 2. * cs.tolerance;
-      cs.friction          = prm.friction_coefficient;
-      cs.contact_distance  = prm.rough_contact ? prm.roughness : 0.;
+      cs.friction          = prm.contact.friction_coefficient;
+      cs.contact_distance =
+        prm.contact.rough_contact ? prm.contact.roughness : 0.;
       return cs;
     }
 
@@ -54,14 +56,15 @@ namespace Fidus
                        const ShearRate        &shear,
                        const BoxGeometry<dim> &box)
     {
-      const bool forced = !prm.external_forces.empty();
-      if (prm.time_scheme == TimeSchemeType::trapezoidal)
+      const bool forced = !prm.particles.external_forces.empty();
+      if (prm.time_stepping.scheme == TimeSchemeType::trapezoidal)
         return std::make_unique<TrapezoidalScheme<dim>>(
           shear,
           box,
           forced,
-          prm.boundary_condition != BoundaryCondition::exact_rigid_inclusion,
-          prm.trapezoidal_iterations);
+          prm.domain.boundary_condition !=
+            BoundaryCondition::exact_rigid_inclusion,
+          prm.time_stepping.trapezoidal_iterations);
       return std::make_unique<AdamsBashforth2<dim>>(shear, forced);
     }
 
@@ -76,27 +79,27 @@ namespace Fidus
                        const BoxGeometry<dim> &box,
                        const bool              resolves_gap_flow)
     {
-      if (!prm.lubrication)
+      if (!prm.lubrication.enabled)
         return nullptr;
       const double                 h = prm.finest_cell_size();
       Contact::LubricationSettings ls;
       ls.dimension             = dim;
-      ls.viscosity             = prm.viscosity;
-      ls.range                 = prm.lubrication_range * h;
-      ls.wall_range            = prm.lubrication_wall_range * h;
-      ls.flow_range            = prm.lubrication_flow_range * h;
-      ls.tangential_range      = prm.lubrication_tangential_range * h;
-      ls.tangential_wall_range = prm.lubrication_wall_tangential_range * h;
-      ls.roughness             = prm.roughness;
+      ls.viscosity             = prm.fluid.viscosity;
+      ls.range                 = prm.lubrication.range * h;
+      ls.wall_range            = prm.lubrication.wall_range * h;
+      ls.flow_range            = prm.lubrication.flow_range * h;
+      ls.tangential_range      = prm.lubrication.tangential_range * h;
+      ls.tangential_wall_range = prm.lubrication.wall_tangential_range * h;
+      ls.roughness             = prm.contact.roughness;
       ls.nothing_resolved      = !resolves_gap_flow;
-      ls.drag                  = prm.drag_coefficient;
-      ls.tangential            = prm.lubrication_tangential;
+      ls.drag                  = prm.contact.drag_coefficient;
+      ls.tangential            = prm.lubrication.tangential;
       auto lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
       lubrication->set_walls(box.walls);
       lubrication->set_periodicity(box.periods);
       // The force density is spread over each particle's solid, so the
       // fluid solve is driven by the whole force.
-      lubrication->set_external_forces(prm.external_forces);
+      lubrication->set_external_forces(prm.particles.external_forces);
       return lubrication;
     }
   } // namespace
@@ -111,14 +114,14 @@ namespace Fidus
     , resume(resume_point)
     , comm(MPI_COMM_WORLD)
     , root(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    , pcout(std::cout, root && parameters.verbosity != Verbosity::quiet)
+    , pcout(std::cout, root && parameters.output.verbosity != Verbosity::quiet)
     , timer(std::make_unique<TimerOutput>(MPI_COMM_WORLD,
                                           pcout,
                                           TimerOutput::never,
                                           TimerOutput::wall_times))
     , warnings(std::cerr, root)
     , box(parameters)
-    , shear(parameters.shear_rate)
+    , shear(parameters.domain.shear_rate)
     , n(parameters.n_particles())
     , fluid(fluid_model ? std::move(fluid_model) :
                           create_fluid_model<dim>(parameters,
@@ -134,31 +137,34 @@ namespace Fidus
   {
     projector.set_walls(box.walls);
     projector.set_periodicity(box.periods);
-    if (parameters.gap_step_fraction > 0.)
-      gap_step = std::make_unique<GapTimeStep>(parameters.gap_step_fraction,
-                                               parameters.gap_step_floor,
-                                               dim,
-                                               box.walls,
-                                               box.periods);
+    if (parameters.time_stepping.gap_step_fraction > 0.)
+      gap_step = std::make_unique<GapTimeStep>(
+        parameters.time_stepping.gap_step_fraction,
+        parameters.time_stepping.gap_step_floor,
+        dim,
+        box.walls,
+        box.periods);
     // A contact correction u - u* is a velocity; the force that gives it to
     // an isolated particle is its drag (doc/rheology.md).
     double mean_radius = 0.;
-    for (const double a : parameters.radii)
-      mean_radius += a / std::max<std::size_t>(1, parameters.radii.size());
-    contact_drag = parameters.drag_coefficient > 0. ?
-                     parameters.drag_coefficient :
-                     isolated_drag(dim, parameters.viscosity, mean_radius);
+    for (const double a : parameters.particles.radii)
+      mean_radius +=
+        a / std::max<std::size_t>(1, parameters.particles.radii.size());
+    contact_drag =
+      parameters.contact.drag_coefficient > 0. ?
+        parameters.contact.drag_coefficient :
+        isolated_drag(dim, parameters.fluid.viscosity, mean_radius);
     // With friction the projection's metric is each particle's isolated
     // resistance relative to that of the mean radius (so that a multiplier
     // times contact_drag is still a force): 6 pi eta a and 8 pi eta a^3 for
     // a sphere, 4 pi eta and 4 pi eta a^2 for a disc (the projector's
     // default rotational weights). Without friction the seed's unit
     // weights stay, and every result with them.
-    if (parameters.friction_coefficient > 0. && dim == 3)
+    if (parameters.contact.friction_coefficient > 0. && dim == 3)
       {
         std::vector<double> weights(n);
         for (unsigned int i = 0; i < n; ++i)
-          weights[i] = parameters.radii[i] / mean_radius;
+          weights[i] = parameters.particles.radii[i] / mean_radius;
         projector.set_weights(weights);
       }
 
@@ -209,7 +215,7 @@ namespace Fidus
       }
 
     warnings.summary();
-    if (prm.verbosity != Verbosity::quiet)
+    if (prm.output.verbosity != Verbosity::quiet)
       timer->print_summary();
     return summary();
   }
@@ -231,7 +237,7 @@ namespace Fidus
             std::error_code ignored;
             std::filesystem::remove_all(entry.path(), ignored);
           }
-    state.initialise(prm.positions);
+    state.initialise(prm.particles.positions);
     particles_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
                                   OutputColumns::particle_columns(),
@@ -240,10 +246,9 @@ namespace Fidus
       std::make_unique<CsvWriter>(prm.output_directory + "/statistics.csv",
                                   OutputColumns::statistics_columns(),
                                   root);
-    particle_output =
-      std::make_unique<ParticleOutput>(prm.output_directory,
-                                       root &&
-                                         prm.particle_output_interval > 0);
+    particle_output = std::make_unique<ParticleOutput>(
+      prm.output_directory,
+      root && prm.output.particle_output_interval > 0);
     fluid->open_field_output(prm.output_directory, nullptr);
 
     record.fluid = solve_at_current_positions();
@@ -257,7 +262,7 @@ namespace Fidus
   bool
   Simulation<dim>::finished() const
   {
-    return state.time >= prm.end_time * (1. - 1e-12);
+    return state.time >= prm.time_stepping.end_time * (1. - 1e-12);
   }
 
 
@@ -266,17 +271,17 @@ namespace Fidus
   double
   Simulation<dim>::choose_time_step() const
   {
-    double dt = prm.time_step;
-    if (prm.adaptive_time_step)
+    double dt = prm.time_stepping.time_step;
+    if (prm.time_stepping.adaptive_time_step)
       {
         double umax = 0;
         for (const auto &v : state.U)
           umax =
             std::max(umax, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
         const double h = fluid->cfl_length();
-        dt             = umax > 0 ?
-                           std::min(prm.maximum_time_step, prm.cfl_number * h / umax) :
-                           prm.maximum_time_step;
+        dt = umax > 0 ? std::min(prm.time_stepping.maximum_time_step,
+                                 prm.time_stepping.cfl_number * h / umax) :
+                        prm.time_stepping.maximum_time_step;
       }
     if (gap_step)
       {
@@ -288,7 +293,11 @@ namespace Fidus
         // the lubricated velocities the steps were 3 to 6 times fewer,
         // and such a pair overlapped (doc/results.md).
         dt = gap_step
-               ->limit(state.X, prm.radii, state.U, dt, &projector.glue_state())
+               ->limit(state.X,
+                       prm.particles.radii,
+                       state.U,
+                       dt,
+                       &projector.glue_state())
                .dt;
         // AB2 extrapolates with dt / (2 dt_old): a step that more than
         // doubles after a closest approach would weigh the old velocities
@@ -301,7 +310,7 @@ namespace Fidus
     // step) is taken as the full step, so that a run makes the same steps
     // as a longer one, and one resumed with a later End time continues
     // bit-identically.
-    const double remaining = prm.end_time - state.time;
+    const double remaining = prm.time_stepping.end_time - state.time;
     return dt <= remaining * (1. + 1e-9) ? dt : remaining;
   }
 

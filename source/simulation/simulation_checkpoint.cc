@@ -68,10 +68,9 @@ namespace Fidus
                                     OutputColumns::statistics_columns(),
                                     root,
                                     state.step);
-      particle_output =
-        std::make_unique<ParticleOutput>(prm.output_directory,
-                                         root &&
-                                           prm.particle_output_interval > 0);
+      particle_output = std::make_unique<ParticleOutput>(
+        prm.output_directory,
+        root && prm.output.particle_output_interval > 0);
       particle_output->resume(state.step);
       fluid->open_field_output(prm.output_directory, &state.step);
     });
@@ -92,18 +91,18 @@ namespace Fidus
     // (a batch system signals every rank, a user perhaps one), and the
     // wall-clock interval measured on rank 0.
     int local[2] = {StopRequest::signal_received(), 0};
-    if (root && prm.checkpoint_wall_interval > 0 &&
+    if (root && prm.output.checkpoint_wall_interval > 0 &&
         wall_clock.wall_time() - last_checkpoint_wall >=
-          prm.checkpoint_wall_interval)
+          prm.output.checkpoint_wall_interval)
       local[1] = 1;
     int global[2] = {0, 0};
     MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm);
 
-    const bool checkpoints_on =
-      prm.checkpoint_interval > 0 || prm.checkpoint_wall_interval > 0;
+    const bool checkpoints_on = prm.output.checkpoint_interval > 0 ||
+                                prm.output.checkpoint_wall_interval > 0;
     const bool due = global[0] != 0 || global[1] != 0 ||
-                     (prm.checkpoint_interval > 0 &&
-                      state.step % prm.checkpoint_interval == 0) ||
+                     (prm.output.checkpoint_interval > 0 &&
+                      state.step % prm.output.checkpoint_interval == 0) ||
                      (checkpoints_on && finished());
     if (due)
       {

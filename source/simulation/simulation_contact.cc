@@ -60,7 +60,7 @@ namespace Fidus
     try
       {
         record.lubrication = lubrication->correct(state.X,
-                                                  prm.radii,
+                                                  prm.particles.radii,
                                                   p.u,
                                                   p.w,
                                                   u_lubricated,
@@ -87,7 +87,7 @@ namespace Fidus
         warnings.warn("lubrication not converged", m.str(), next, ls.residual);
       }
     // A contact model holds the gap itself.
-    if (prm.contact_model == ContactModel::none)
+    if (prm.contact.model == ContactModel::none)
       check_lubricated_gaps(dt);
   }
 
@@ -205,7 +205,7 @@ namespace Fidus
       projector.glue_state().entries();
     const std::vector<RunState::Vec3> w_start = w_corrected;
     double                            length  = 0.;
-    for (const double a : prm.radii)
+    for (const double a : prm.particles.radii)
       length = std::max(length, a);
     Contact::ProjectionStatistics cst;
     for (unsigned int repetition = 0;; ++repetition)
@@ -262,7 +262,7 @@ namespace Fidus
           });
         const std::vector<RunState::Vec3> w = w_corrected;
         return projector.project(state.X,
-                                 prm.radii,
+                                 prm.particles.radii,
                                  u,
                                  w,
                                  dt,
@@ -271,8 +271,13 @@ namespace Fidus
                                  middle);
       }
     if (middle == nullptr)
-      return projector.project(state.X, prm.radii, u, dt, u_corrected);
-    return projector.project(state.X, prm.radii, u, dt, u_corrected, *middle);
+      return projector.project(state.X,
+                               prm.particles.radii,
+                               u,
+                               dt,
+                               u_corrected);
+    return projector
+      .project(state.X, prm.particles.radii, u, dt, u_corrected, *middle);
   }
 
 
@@ -317,20 +322,21 @@ namespace Fidus
     const RunState &s   = state;
     const double    tol = contact_settings.overlap_tolerance;
     for (unsigned int d = 0; d < dim; ++d)
-      if (!box.is_periodic[d] && (s.X[i][d] - prm.radii[i] < box.lo[d] - tol ||
-                                  s.X[i][d] + prm.radii[i] > box.hi[d] + tol))
+      if (!box.is_periodic[d] &&
+          (s.X[i][d] - prm.particles.radii[i] < box.lo[d] - tol ||
+           s.X[i][d] + prm.particles.radii[i] > box.hi[d] + tol))
         {
-          const bool         low     = s.X[i][d] - prm.radii[i] < box.lo[d];
-          const char         axis[3] = {'x', 'y', 'z'};
+          const bool low     = s.X[i][d] - prm.particles.radii[i] < box.lo[d];
+          const char axis[3] = {'x', 'y', 'z'};
           std::ostringstream m;
           m << "particle " << i << " reached the box face " << axis[d] << " = "
             << (low ? box.lo[d] : box.hi[d]) << " at step " << s.step
             << ", t = " << s.time << " (centre " << s.X[i][d] << ", radius "
-            << prm.radii[i] << "): ";
+            << prm.particles.radii[i] << "): ";
           if (box.is_wall_axis[d])
             m << "it crossed a wall (Contact/Walls = "
-              << (prm.walls ? "true" : "false") << ", Contact/Model "
-              << (prm.contact_model == ContactModel::none ? "none" : "") << ")";
+              << (prm.contact.walls ? "true" : "false") << ", Contact/Model "
+              << (prm.contact.model == ContactModel::none ? "none" : "") << ")";
           else
             m << "it left through an in/outflow face";
           m << "; output up to step " << s.step - 1 << " is written";

@@ -34,7 +34,7 @@ namespace Fidus
     // rate cannot be rescaled; those rows keep the rate at this time.
     const double g_now = shear(state.time);
     double       g     = g_now;
-    if (dt > 0. && g_now != 0. && prm.external_forces.empty())
+    if (dt > 0. && g_now != 0. && prm.particles.external_forces.empty())
       {
         const double g_before = shear(state.time - 1e-6 * dt);
         if (std::abs(g_before - g_now) >
@@ -44,7 +44,7 @@ namespace Fidus
     record.hydrodynamic                = fluid->hydrodynamic_stress(g);
     const auto           &hydrodynamic = record.hydrodynamic;
     SymmetricTensor<2, 3> contact      = contact_stress(projector.constraints(),
-                                                   prm.radii,
+                                                   prm.particles.radii,
                                                    contact_drag,
                                                    hydrodynamic.volume);
     SymmetricTensor<2, 3> lubricated =
@@ -62,7 +62,7 @@ namespace Fidus
                                               hydrodynamic.particle,
                                               hydrodynamic.wall[0][1],
                                               contact,
-                                              prm.viscosity,
+                                              prm.fluid.viscosity,
                                               g,
                                               dim,
                                               lubricated);
@@ -76,13 +76,13 @@ namespace Fidus
   {
     TimerOutput::Scope scope(*timer, "output");
     const RunState    &s = state;
-    if (s.step % prm.particle_csv_interval == 0)
+    if (s.step % prm.output.particle_csv_interval == 0)
       write_particle_rows();
 
     double gap = std::numeric_limits<double>::infinity();
     if (n > 0)
       gap = Contact::ContactProjector::minimum_gap(s.X,
-                                                   prm.radii,
+                                                   prm.particles.radii,
                                                    box.walls,
                                                    dim,
                                                    n <= 200 ?
@@ -102,7 +102,8 @@ namespace Fidus
                      2);
         totals.min_normalised_distance =
           std::min(totals.min_normalised_distance,
-                   std::sqrt(d2) / (prm.radii[0] + prm.radii[1]));
+                   std::sqrt(d2) /
+                     (prm.particles.radii[0] + prm.particles.radii[1]));
       }
     totals.max_uzawa_iterations =
       std::max(totals.max_uzawa_iterations, fs.uzawa_iterations);
@@ -142,12 +143,12 @@ namespace Fidus
     statistics_csv->write_row(row);
 
     fluid->write_fields(s.step, s.time);
-    if (prm.particle_output_interval > 0 &&
-        s.step % prm.particle_output_interval == 0)
+    if (prm.output.particle_output_interval > 0 &&
+        s.step % prm.output.particle_output_interval == 0)
       particle_output->write(s.step,
                              s.time,
                              s.X,
-                             prm.radii,
+                             prm.particles.radii,
                              s.U,
                              s.W,
                              projector.glued_count_per_particle(n));
@@ -162,7 +163,9 @@ namespace Fidus
   {
     const RunState                    &s = state;
     std::vector<SymmetricTensor<2, 3>> contact =
-      contact_stresslets(projector.constraints(), prm.radii, contact_drag);
+      contact_stresslets(projector.constraints(),
+                         prm.particles.radii,
+                         contact_drag);
     std::vector<SymmetricTensor<2, 3>> lubricated =
       lubrication ? lubrication_stresslets(lubrication->bonds(), n) :
                     std::vector<SymmetricTensor<2, 3>>(n);
@@ -187,20 +190,47 @@ namespace Fidus
             {std::cos(0.5 * s.angle[i]), 0., 0., std::sin(0.5 * s.angle[i])}};
         else if (dim == 3 && i < s.quaternion.size())
           q = s.quaternion[i];
-        particles_csv->write_row({double(s.step), s.time,    double(i),
-                                  s.X[i][0],      s.X[i][1], s.X[i][2],
-                                  s.U[i][0],      s.U[i][1], s.U[i][2],
-                                  s.W[i][0],      s.W[i][1], s.W[i][2],
-                                  prm.radii[i],   h[0][0],   h[0][1],
-                                  h[0][2],        h[1][1],   h[1][2],
-                                  h[2][2],        c[0][0],   c[0][1],
-                                  c[0][2],        c[1][1],   c[1][2],
-                                  c[2][2],        l[0][0],   l[0][1],
-                                  l[0][2],        l[1][1],   l[1][2],
-                                  l[2][2],        u[0],      u[1],
-                                  u[2],           w[0],      w[1],
-                                  w[2],           q[0],      q[1],
-                                  q[2],           q[3]});
+        particles_csv->write_row({double(s.step),
+                                  s.time,
+                                  double(i),
+                                  s.X[i][0],
+                                  s.X[i][1],
+                                  s.X[i][2],
+                                  s.U[i][0],
+                                  s.U[i][1],
+                                  s.U[i][2],
+                                  s.W[i][0],
+                                  s.W[i][1],
+                                  s.W[i][2],
+                                  prm.particles.radii[i],
+                                  h[0][0],
+                                  h[0][1],
+                                  h[0][2],
+                                  h[1][1],
+                                  h[1][2],
+                                  h[2][2],
+                                  c[0][0],
+                                  c[0][1],
+                                  c[0][2],
+                                  c[1][1],
+                                  c[1][2],
+                                  c[2][2],
+                                  l[0][0],
+                                  l[0][1],
+                                  l[0][2],
+                                  l[1][1],
+                                  l[1][2],
+                                  l[2][2],
+                                  u[0],
+                                  u[1],
+                                  u[2],
+                                  w[0],
+                                  w[1],
+                                  w[2],
+                                  q[0],
+                                  q[1],
+                                  q[2],
+                                  q[3]});
       }
   }
 
@@ -214,10 +244,11 @@ namespace Fidus
     // last step always).
     const RunState &s   = state;
     const double    now = wall_clock.wall_time();
-    const bool      due = prm.progress_interval > 0 ?
-                            s.step % prm.progress_interval == 0 :
-                            last_progress_wall < 0. ||
-                         now - last_progress_wall >= prm.progress_wall_interval;
+    const bool      due =
+      prm.output.progress_interval > 0 ?
+             s.step % prm.output.progress_interval == 0 :
+             last_progress_wall < 0. ||
+          now - last_progress_wall >= prm.output.progress_wall_interval;
     if (!due && !finished())
       return;
     last_progress_wall   = now;
@@ -234,9 +265,9 @@ namespace Fidus
     line.shared            = fs.shared_cells;
     line.active            = record.projection.n_active;
     line.glued             = record.projection.n_glued;
-    line.eta               = s.time > 0 ?
-                               elapsed_wall_seconds() / s.time * (prm.end_time - s.time) :
-                               0.;
+    line.eta               = s.time > 0 ? elapsed_wall_seconds() / s.time *
+                              (prm.time_stepping.end_time - s.time) :
+                                          0.;
     pcout << line.text() << std::endl;
   }
 

@@ -58,14 +58,14 @@ main(int argc, char **argv)
     "  set Lubrication correction = true\n"
     "  set Lubrication range = 0.4, 0.25\nend\n");
   check_range("pairs' tangential range = pairs' range (0.4)",
-              p.lubrication_tangential_range,
+              p.lubrication.tangential_range,
               0.4,
               0.4);
   check_range("walls' tangential range, auto in 2D (1)",
-              p.lubrication_wall_tangential_range,
+              p.lubrication.wall_tangential_range,
               1.,
               1.);
-  check_range("flow range, auto in 2D (2)", p.lubrication_flow_range, 2., 2.);
+  check_range("flow range, auto in 2D (2)", p.lubrication.flow_range, 2., 2.);
 
   const double h                   = 0.05 * a;
   const auto [mesh_4, corrected_4] = run(h, 4);

@@ -116,7 +116,8 @@ namespace
       for (unsigned int d = 0; d < 2; ++d)
         {
           const double exact =
-            centre[d] + (p.positions[i][d] - centre[d]) * std::exp(-k);
+            centre[d] +
+            (p.particles.positions[i][d] - centre[d]) * std::exp(-k);
           o.error = std::max(o.error, std::abs(s.positions[i][d] - exact));
         }
     o.shear_stress = s.hydrodynamic_stress[1];

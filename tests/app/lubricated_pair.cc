@@ -232,7 +232,7 @@ main(int argc, char **argv)
 
   const Fidus::Parameters p =
     Fidus::read_parameters_from_string(scene(true, false, "1", T, 0.01, "x"));
-  const double                h_c = p.lubrication_range * p.finest_cell_size();
+  const double                h_c = p.lubrication.range * p.finest_cell_size();
   const std::array<double, 2> ref = reference(h_c, T);
   double                      err[2];
   int                         k = 0;

@@ -239,7 +239,8 @@ correction_on(const unsigned int dim, const std::string &solver = "")
       << "  set Upper right = " << (dim == 2 ? "1, 1" : "1, 1, 1") << "\n"
       << "end\nsubsection Fluid\n  subsection Linear solver\n"
       << solver << "  end\nend\n";
-  return Fidus::read_parameters_from_string(prm.str()).rigid_body_correction;
+  return Fidus::read_parameters_from_string(prm.str())
+    .fictitious_domain.rigid_body_correction;
 }
 
 int

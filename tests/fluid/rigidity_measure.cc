@@ -116,11 +116,11 @@ main(int argc, char **argv)
   const Fidus::Parameters defaults =
     Fidus::read_parameters_from_string(scene(1., 7, "", "", 20));
   check_range("defaults: Rigidity measure is particle",
-              defaults.rigidity_per_particle ? 1 : 0,
+              defaults.fictitious_domain.rigidity_per_particle ? 1 : 0,
               1,
               1);
   check_range("defaults: Rigidity tolerance (auto, particle)",
-              defaults.rigidity_tolerance,
+              defaults.fictitious_domain.rigidity_tolerance,
               5e-3,
               5e-3);
   check_range("Rigidity measure = box: Rigidity tolerance (auto)",

@@ -92,7 +92,8 @@ namespace
               "" :
               "subsection Contact\n  set Model = " + contact + "\nend\n");
     const Fidus::Parameters p = Fidus::read_parameters_from_string(prm.str());
-    return {p.release_shared_cells, p.reuse_multiplier};
+    return {p.fictitious_domain.release_shared_cells,
+            p.fictitious_domain.reuse_multiplier};
   }
 
   /// Separation rate along the line of centres over the undisturbed one.

@@ -49,14 +49,15 @@ namespace Fidus
     double              overlap = 0.;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const double a = prm.radii[i];
+        const double a = prm.particles.radii[i];
         for (unsigned int d = 0; d < dim; ++d)
           if (!box.is_periodic[d])
             {
               const double wall =
                 std::min(X[i][d] - box.lo[d], box.hi[d] - X[i][d]) - a;
-              shrink[i] = std::max(shrink[i], prm.cut_minimum_gap * a - wall);
-              overlap   = std::max(overlap, -wall / a);
+              shrink[i] =
+                std::max(shrink[i], prm.cut_element.minimum_gap * a - wall);
+              overlap = std::max(overlap, -wall / a);
             }
         for (unsigned int j = 0; j < i; ++j)
           {
@@ -67,10 +68,10 @@ namespace Fidus
                 std::pow(Contact::PairSearch::minimum_image(X[i][d] - X[j][d],
                                                             box.periods[d]),
                          2);
-            const double b   = prm.radii[j];
+            const double b   = prm.particles.radii[j];
             const double gap = std::sqrt(d2) - a - b;
             const double cut_by =
-              0.5 * (prm.cut_minimum_gap * std::min(a, b) - gap);
+              0.5 * (prm.cut_element.minimum_gap * std::min(a, b) - gap);
             shrink[i] = std::max(shrink[i], cut_by);
             shrink[j] = std::max(shrink[j], cut_by);
             overlap   = std::max(overlap, -gap / std::min(a, b));
@@ -87,7 +88,7 @@ namespace Fidus
                     overlap);
     std::vector<double> radii(n);
     for (unsigned int i = 0; i < n; ++i)
-      radii[i] = prm.radii[i] - std::max(0., shrink[i]);
+      radii[i] = prm.particles.radii[i] - std::max(0., shrink[i]);
     return radii;
   }
 
@@ -104,18 +105,20 @@ namespace Fidus
     TimerOutput::Scope scope(timer, "fluid");
     using Cut = CutStokesInclusion<dim>;
     typename Cut::Settings s;
-    s.boundary   = prm.boundary_condition == BoundaryCondition::sliding_walls ?
-                     Cut::Boundary::sliding_walls :
-                     Cut::Boundary::linear_shear;
-    s.shear_rate = g;
-    s.viscosity  = prm.viscosity;
-    s.global_level = prm.minimum_level;
-    s.band_levels  = prm.maximum_level - prm.minimum_level;
-    s.gap_cells    = prm.cut_gap_cells;
-    s.linear_solver =
-      prm.cut_linear_solver == "direct"    ? Cut::LinearSolver::direct :
-      prm.cut_linear_solver == "iterative" ? Cut::LinearSolver::iterative :
-                                             Cut::LinearSolver::automatic;
+    s.boundary =
+      prm.domain.boundary_condition == BoundaryCondition::sliding_walls ?
+        Cut::Boundary::sliding_walls :
+        Cut::Boundary::linear_shear;
+    s.shear_rate   = g;
+    s.viscosity    = prm.fluid.viscosity;
+    s.global_level = prm.refinement.minimum_level;
+    s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
+    s.gap_cells   = prm.cut_element.gap_cells;
+    s.linear_solver = prm.cut_element.linear_solver == "direct" ?
+                        Cut::LinearSolver::direct :
+                      prm.cut_element.linear_solver == "iterative" ?
+                        Cut::LinearSolver::iterative :
+                        Cut::LinearSolver::automatic;
     // A pair's cut cells away from its gap are as coarse as the Maximum
     // level, where 4 Gauss points per direction leave a quadrature error
     // of 1e-4 in the velocities at level 5 (a = 1.6 cells), seen as a
@@ -131,9 +134,9 @@ namespace Fidus
         for (unsigned int d = 0; d < dim; ++d)
           P.center[d] = X[i][d];
         P.radius = radii[i];
-        if (!prm.external_forces.empty())
+        if (!prm.particles.external_forces.empty())
           for (unsigned int d = 0; d < dim; ++d)
-            P.force[d] = prm.external_forces[i][d];
+            P.force[d] = prm.particles.external_forces[i][d];
       }
 
     typename Cut::Result r;
@@ -197,7 +200,7 @@ namespace Fidus
         h.particle += S / h.volume;
       }
     h.total = -h.fluid_pressure * unit_symmetric_tensor<3>() +
-              2. * prm.viscosity * h.mean_strain_rate + h.particle;
+              2. * prm.fluid.viscosity * h.mean_strain_rate + h.particle;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
         h.wall[a][b] = std::numeric_limits<double>::quiet_NaN();

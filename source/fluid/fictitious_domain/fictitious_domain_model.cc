@@ -28,15 +28,16 @@ namespace Fidus
     forced_velocity_scale(const Parameters &prm)
     {
       double u = 0.;
-      for (unsigned int i = 0; i < prm.external_forces.size(); ++i)
+      for (unsigned int i = 0; i < prm.particles.external_forces.size(); ++i)
         {
           double f2 = 0.;
-          for (const double c : prm.external_forces[i])
+          for (const double c : prm.particles.external_forces[i])
             f2 += c * c;
           const double drag = isolated_drag(
             prm.dimension,
-            prm.viscosity,
-            prm.radii[std::min<std::size_t>(i, prm.radii.size() - 1)]);
+            prm.fluid.viscosity,
+            prm.particles
+              .radii[std::min<std::size_t>(i, prm.particles.radii.size() - 1)]);
           u = std::max(u, std::sqrt(f2) / drag);
         }
       return u;
@@ -44,38 +45,18 @@ namespace Fidus
 
 
 
-    /// The Fluid and Linear solver entries the StokesSolver reads.
+    /// The StokesSolver's settings: the fictitious domain's entries as
+    /// parsed, and what the rest of the scene decides.
     template <int dim>
     typename StokesSolver<dim>::Settings
     stokes_settings(const Parameters &prm)
     {
       typename StokesSolver<dim>::Settings ss;
-      ss.degree                     = prm.velocity_degree;
-      ss.viscosity                  = prm.viscosity;
-      ss.penalty_factor             = prm.penalty_factor;
-      ss.rigidity_tolerance         = prm.rigidity_tolerance;
-      ss.rigidity_per_particle      = prm.rigidity_per_particle;
-      ss.rigid_velocity_tolerance   = prm.rigid_velocity_tolerance;
-      ss.forced_velocity_scale      = forced_velocity_scale(prm);
-      ss.sliver_threshold           = prm.sliver_threshold;
-      ss.max_uzawa_iterations       = prm.max_uzawa_iterations;
-      ss.linear_tolerance           = prm.linear_tolerance;
-      ss.inexact_uzawa_factor       = prm.inexact_uzawa_factor;
-      ss.max_cheap_iterations       = prm.max_cheap_iterations;
-      ss.max_linear_iterations      = prm.max_linear_iterations;
-      ss.amg_aggregation_threshold  = prm.amg_aggregation_threshold;
-      ss.amg_smoother_sweeps        = prm.amg_smoother_sweeps;
-      ss.amg_smoother_type          = prm.amg_smoother_type;
-      ss.direct_max_unknowns        = prm.direct_max_unknowns;
-      ss.geometric_multigrid        = prm.geometric_multigrid;
-      ss.mg_smoother_degree         = prm.mg_smoother_degree;
-      ss.mg_viscosity_averaging     = prm.mg_viscosity_averaging;
-      ss.mg_smoother_blocks         = prm.mg_smoother_blocks;
-      ss.rigid_body_correction      = prm.rigid_body_correction;
-      ss.matrix_free_velocity_block = prm.matrix_free_velocity_block;
-      ss.reuse_multiplier           = prm.reuse_multiplier;
-      ss.release_shared_cells       = prm.release_shared_cells;
-      ss.verbose                    = prm.verbosity == Verbosity::verbose;
+      static_cast<FictitiousDomainParameters &>(ss) = prm.fictitious_domain;
+      ss.degree                                     = prm.fluid.velocity_degree;
+      ss.viscosity                                  = prm.fluid.viscosity;
+      ss.forced_velocity_scale = forced_velocity_scale(prm);
+      ss.verbose               = prm.output.verbosity == Verbosity::verbose;
       return ss;
     }
   } // namespace
@@ -94,12 +75,13 @@ namespace Fidus
     , timer(timer_output)
     , warnings(warning_log)
     , n(parameters.n_particles())
-    , boundary(parameters.boundary_condition, box.lo[1], box.hi[1])
+    , boundary(parameters.domain.boundary_condition, box.lo[1], box.hi[1])
   {
-    solid_radii = prm.radii;
+    solid_radii = prm.particles.radii;
     for (double &a : solid_radii)
-      a -= prm.solid_retraction * box.h_finest;
-    solid.set_smoothing_width(prm.solid_smoothing * box.h_finest);
+      a -= prm.fictitious_domain.solid_retraction * box.h_finest;
+    solid.set_smoothing_width(prm.fictitious_domain.solid_smoothing *
+                              box.h_finest);
 
     tria = std::make_unique<parallel::distributed::Triangulation<dim>>(
       MPI_COMM_WORLD,
@@ -112,50 +94,51 @@ namespace Fidus
                     box.lo,
                     box.hi,
                     box.periodic,
-                    resuming ? 0 : prm.initial_global_refinement);
+                    resuming ? 0 : prm.refinement.initial_global_refinement);
     solver =
       std::make_unique<StokesSolver<dim>>(*tria, stokes_settings<dim>(prm));
     stress_integrator =
       std::make_unique<HydrodynamicStress<dim>>(box.dirichlet_ids);
 
     typename MeshRefiner<dim>::Settings ms;
-    ms.minimum_level = prm.minimum_level;
-    ms.maximum_level = prm.maximum_level;
-    ms.band          = prm.interface_band;
-    ms.gap_distance  = prm.gap_refinement_distance;
+    ms.minimum_level = prm.refinement.minimum_level;
+    ms.maximum_level = prm.refinement.maximum_level;
+    ms.band          = prm.refinement.interface_band;
+    ms.gap_distance  = prm.refinement.gap_refinement_distance;
     refiner          = std::make_unique<MeshRefiner<dim>>(ms);
 
-    if (prm.boundary_condition == BoundaryCondition::exact_rigid_inclusion)
+    if (prm.domain.boundary_condition ==
+        BoundaryCondition::exact_rigid_inclusion)
       {
         Point<dim> c;
         for (unsigned int d = 0; d < dim; ++d)
-          c[d] = prm.positions[0][d];
-        exact =
-          std::make_unique<ExactRigidInclusion<dim>>(c,
-                                                     prm.radii[0],
-                                                     ShearRate(prm.shear_rate)(
-                                                       0.),
-                                                     prm.viscosity);
+          c[d] = prm.particles.positions[0][d];
+        exact = std::make_unique<ExactRigidInclusion<dim>>(
+          c,
+          prm.particles.radii[0],
+          ShearRate(prm.domain.shear_rate)(0.),
+          prm.fluid.viscosity);
       }
-    if (!prm.external_forces.empty())
-      external_force =
-        std::make_unique<ParticleForceDensity<dim>>(solid, prm.external_forces);
+    if (!prm.particles.external_forces.empty())
+      external_force = std::make_unique<ParticleForceDensity<dim>>(
+        solid,
+        prm.particles.external_forces);
 
     // Rigid shared cells move a pair closer than half a cell as one rigid
     // doublet, which the mesh held at about 0.6 finest cells in the paper's
     // 3D pair: beyond the correction's range, which then acted on no pair.
-    if (prm.lubrication && !prm.release_shared_cells)
+    if (prm.lubrication.enabled && !prm.fictitious_domain.release_shared_cells)
       warnings.warn(
         "lubrication with rigid shared cells",
         "'Fluid/Lubrication correction' is true with 'Fluid/Shared cells = "
         "rigid': a pair closer than half a cell then moves as one rigid "
         "doublet, which the mesh holds at about 0.6 finest cells (measured "
         "on the paper's 3D pair), beyond the correction's range of " +
-          std::to_string(prm.lubrication_range) +
+          std::to_string(prm.lubrication.range) +
           " finest cells, so the correction may act on no pair; 'Shared "
           "cells = auto' (fluid when the correction is on) lets it act",
         0,
-        prm.lubrication_range);
+        prm.lubrication.range);
   }
 
 
@@ -208,7 +191,8 @@ namespace Fidus
           }
         // Skip remeshing while no particle has left a fraction of the
         // refined band: the mesh still resolves every surface.
-        if (moved <= prm.remesh_fraction * prm.interface_band * box.h_finest)
+        if (moved <= prm.refinement.remesh_fraction *
+                       prm.refinement.interface_band * box.h_finest)
           return false;
       }
     const unsigned int changes  = refiner->adapt(*tria, solid);
@@ -254,17 +238,17 @@ namespace Fidus
     std::ostringstream m;
     m << label.where << ": the Uzawa loop stopped after " << s.uzawa_iterations
       << (s.uzawa_iterations == 1 ? " iteration" : " iterations") << " at "
-      << (prm.rigidity_per_particle ? "per-particle " : "")
+      << (prm.fictitious_domain.rigidity_per_particle ? "per-particle " : "")
       << "rigidity residual " << s.rigidity_residual;
-    if (prm.rigid_velocity_tolerance > 0.)
+    if (prm.fictitious_domain.rigid_velocity_tolerance > 0.)
       m << ", rigid velocity change " << s.rigid_velocity_change << " > "
-        << prm.rigid_velocity_tolerance
+        << prm.fictitious_domain.rigid_velocity_tolerance
         << (s.uzawa_stalled ?
               " (no progress in the last iteration; Fluid/Rigid velocity "
               "tolerance)" :
               " (Fluid/Maximum Uzawa iterations)");
     else
-      m << " > " << prm.rigidity_tolerance
+      m << " > " << prm.fictitious_domain.rigidity_tolerance
         << (s.uzawa_stalled ?
               " (no progress in the last iteration; Fluid/Rigidity "
               "tolerance)" :
@@ -336,7 +320,7 @@ namespace Fidus
     const std::string  &directory,
     const unsigned int *resumed_step)
   {
-    if (prm.field_output_interval == 0)
+    if (prm.output.field_output_interval == 0)
       return;
     field_output = std::make_unique<FieldOutput<dim>>(directory);
     if (resumed_step)
@@ -352,7 +336,7 @@ namespace Fidus
   FictitiousDomainModel<dim>::write_fields(const unsigned int step,
                                            const double       time)
   {
-    if (field_output && step % prm.field_output_interval == 0)
+    if (field_output && step % prm.output.field_output_interval == 0)
       field_output->write(*solver, solid, step, time);
   }
 
@@ -407,11 +391,11 @@ namespace Fidus
       }
     const double omega_error = std::sqrt(werr) / std::abs(0.5 * g);
     const double translation_error =
-      std::sqrt(uerr) / std::abs(g * prm.radii[0]);
+      std::sqrt(uerr) / std::abs(g * prm.particles.radii[0]);
     exact_errors = {
       {e.u_l2, e.u_h1, e.u_l2_norm, omega_error, translation_error}};
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0 &&
-        prm.verbosity != Verbosity::quiet)
+        prm.output.verbosity != Verbosity::quiet)
       std::cout << std::scientific << std::setprecision(4)
                 << "exact rigid inclusion: cells "
                 << tria->n_global_active_cells() << ", dofs "

@@ -31,12 +31,13 @@ namespace Fidus
     // An external force moves a free-draining particle relative to the
     // flow at F over its isolated drag (6 pi eta a for a sphere, fidus's
     // 4 pi eta for a disc); it exerts no torque.
-    if (!prm.external_forces.empty())
+    if (!prm.particles.external_forces.empty())
       for (unsigned int i = 0; i < X.size(); ++i)
         {
-          const double drag = isolated_drag(dim, prm.viscosity, prm.radii[i]);
+          const double drag =
+            isolated_drag(dim, prm.fluid.viscosity, prm.particles.radii[i]);
           for (unsigned int d = 0; d < dim; ++d)
-            U[i][d] += prm.external_forces[i][d] / drag;
+            U[i][d] += prm.particles.external_forces[i][d] / drag;
         }
     return Statistics();
   }
@@ -53,7 +54,7 @@ namespace Fidus
     s.volume = 1.;
     for (unsigned int d = 0; d < dim; ++d)
       s.volume *= box.hi[d] - box.lo[d];
-    s.total[0][1]            = prm.viscosity * g;
+    s.total[0][1]            = prm.fluid.viscosity * g;
     s.mean_strain_rate[0][1] = 0.5 * g;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)

@@ -12,6 +12,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <fidus/fluid/fictitious_domain/direct_stokes_solver.h>
+#include <fidus/fluid/fictitious_domain/fictitious_domain_parameters.h>
 #include <fidus/fluid/fictitious_domain/rigid_motion.h>
 #include <fidus/fluid/fictitious_domain/solid_indicator.h>
 #include <fidus/fluid/fictitious_domain/uzawa_loop.h>
@@ -45,66 +46,23 @@ namespace Fidus
   class StokesSolver
   {
   public:
-    /// Solver settings (see Parameters for their meaning).
-    struct Settings
+    /**
+     * Solver settings: the fictitious domain's entries
+     * (FictitiousDomainParameters, where each is documented) and what the
+     * rest of the scene decides.
+     */
+    struct Settings : public FictitiousDomainParameters
     {
-      unsigned int degree             = 2;
-      double       viscosity          = 1.;
-      double       penalty_factor     = 1e3;
-      double       rigidity_tolerance = 1e-3;
-      /// Compare rigidity_tolerance with the per-particle rigidity
-      /// residual (UzawaProblem::Residual::particle) instead of the box's
-      /// (UzawaProblem::Residual::held).
-      bool rigidity_per_particle = false;
-      /// Uzawa stop on the particles' rigid velocities instead of the
-      /// strain in the solid (0: off; see solve()).
-      double rigid_velocity_tolerance = 0.;
+      unsigned int degree    = 2;
+      double       viscosity = 1.;
       /// A velocity scale of the particles' forced motion (external
       /// forces; 0: none). The rigid velocity change is measured against
       /// the larger of it and the box's shear: a scene driven by forces
       /// alone has a small rms shear rate that would make the measure
       /// unreachably strict.
       double forced_velocity_scale = 0.;
-      /// Cells whose share of solid quadrature points is below this are
-      /// held rigid by the penalty alone, not by the multiplier (0: off).
-      double       sliver_threshold     = 0.;
-      unsigned int max_uzawa_iterations = 50;
-      double       linear_tolerance     = 1e-6;
-      /// Inexact Uzawa: the FGMRES solves inside the loop stop at this
-      /// factor times the loop's own tolerance (never below
-      /// linear_tolerance); the final velocity is then carried on to
-      /// linear_tolerance. 0: every solve to linear_tolerance.
-      double       inexact_uzawa_factor      = 0.;
-      unsigned int max_cheap_iterations      = 1000;
-      unsigned int max_linear_iterations     = 1000;
-      double       amg_aggregation_threshold = 0.;
-      unsigned int amg_smoother_sweeps       = 4;
-      std::string  amg_smoother_type         = "Chebyshev";
-      /// Factorise the system once per solve (DirectStokesSolver) instead
-      /// of FGMRES on meshes of at most this many unknowns (0: never); the
-      /// preconditioner settings are then unused.
-      unsigned long long direct_max_unknowns = 0;
-      /// Velocity-block preconditioner: geometric multigrid (true) or the
-      /// ML AMG.
-      bool         geometric_multigrid    = false;
-      unsigned int mg_smoother_degree     = 4;
-      std::string  mg_viscosity_averaging = "galerkin";
-      /// GMG smoother blocks: none or cut cells (VelocityMultigrid).
-      std::string mg_smoother_blocks = "cut cells";
-      /// With the geometric multigrid: multiply by the velocity block with
-      /// the finest level's matrix-free operator and do not assemble it
-      /// (false: assemble it as with the AMG).
-      bool matrix_free_velocity_block = true;
-      /// Correct each V-cycle with the particles' rigid motions
-      /// (RigidModeCorrection).
-      bool rigid_body_correction = true;
       /// Krylov vectors kept by FGMRES before a restart.
-      unsigned int gmres_restart    = 200;
-      bool         reuse_multiplier = true;
-      /// Treat the solid part of shared cells (within half a cell diameter of
-      /// two particles) as fluid; false: the seed's model (rigid wherever
-      /// there is solid, which cannot be met there).
-      bool release_shared_cells = false;
+      unsigned int gmres_restart = 200;
       /// Print one line per Uzawa iteration (rank 0).
       bool verbose = false;
     };

@@ -1,0 +1,46 @@
+#ifndef fidus_fluid_cut_element_cut_element_parameters_h
+#define fidus_fluid_cut_element_cut_element_parameters_h
+
+#include <string>
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace Fidus
+{
+  struct Parameters;
+
+  /**
+   * The cut finite element's own entries (subsection Fluid, names beginning
+   * with 'Cut'), and what the model needs of the rest of the scene.
+   */
+  struct CutElementParameters
+  {
+    /// Register Fluid/Cut linear solver, Cut minimum gap, Cut gap cells.
+    static void
+    declare(dealii::ParameterHandler &prm);
+
+    /// Read them back.
+    void
+    parse(dealii::ParameterHandler &prm);
+
+    /// Throw an InputError for what 'Fluid/Model = cut finite element'
+    /// cannot do with the scene @p scene (its box, boundary condition,
+    /// lubrication correction, field output), or a minimum gap that is not
+    /// positive.
+    void
+    check(const Parameters &scene) const;
+
+    /// The fluid sees every gap at least this times the smaller radius
+    /// (wall gaps: the radius).
+    double minimum_gap = 1e-4;
+    /// Cells across a thin gap.
+    double gap_cells = 2.;
+    /// auto (or automatic), direct or iterative.
+    std::string linear_solver = "automatic";
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,51 @@
+#ifndef fidus_lubrication_lubrication_parameters_h
+#define fidus_lubrication_lubrication_parameters_h
+
+namespace dealii
+{
+  class ParameterHandler;
+}
+
+namespace Fidus
+{
+  /**
+   * The sub-grid lubrication correction's entries (subsection Fluid, names
+   * beginning with 'Lubrication'), with their 'auto' values resolved for
+   * the dimension. Ranges are gaps in finest cell sizes. The header is free
+   * of deal.II, like the lubrication library; declare() and parse() live in
+   * the deal.II part of fidus (fidus_core).
+   */
+  struct LubricationParameters
+  {
+    /// Register the lubrication entries of the subsection Fluid.
+    static void
+    declare(dealii::ParameterHandler &prm);
+
+    /// Read them back, 'auto' resolved for @p dim dimensions.
+    void
+    parse(dealii::ParameterHandler &prm, const unsigned int dim);
+
+    /// With the correction on, throw an InputError for a range that is not
+    /// positive.
+    void
+    check() const;
+
+    /// Fluid/Lubrication correction.
+    bool enabled = false;
+    /// Ranges of particle pairs and of particle-wall gaps below which the
+    /// squeeze is corrected (Fluid/Lubrication range).
+    double range      = 2.;
+    double wall_range = 2.;
+    /// The pairs' range in the fluid solve's response to the flow
+    /// (Fluid/Lubrication flow range).
+    double flow_range = 2.;
+    /// Fluid/Lubrication tangential range of particle pairs and of
+    /// particle-wall gaps.
+    double tangential_range      = 2.;
+    double wall_tangential_range = 1.;
+    /// Also the tangential terms (Fluid/Lubrication tangential terms).
+    bool tangential = true;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,106 @@
+// The cut finite element's entries of the subsection Fluid.
+
+#include <deal.II/base/parameter_handler.h>
+#include <fidus/core/input_error.h>
+#include <fidus/core/parameters.h>
+#include <fidus/fluid/cut_element/cut_element_parameters.h>
+#include <sstream>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  void
+  CutElementParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Fluid");
+    prm.declare_entry(
+      "Cut linear solver",
+      "auto",
+      Patterns::Selection("auto|automatic|direct|iterative"),
+      "With 'cut finite element': 'direct' factorises the system (MUMPS); "
+      "'iterative' runs FGMRES with a block preconditioner (a geometric "
+      "multigrid V-cycle for the velocities and rigid motions) to the "
+      "relative residual 1e-10; 'auto' (or 'automatic', its former "
+      "name) is iterative in 3D above "
+      "40000 unknowns, where the factorisation is slower and takes "
+      "several GB, and direct otherwise (doc/cut_element.md, 'The "
+      "iterative solver').");
+    prm.declare_entry(
+      "Cut minimum gap",
+      "1e-4",
+      Patterns::Double(0.),
+      "With 'cut finite element': the fluid solve sees every gap between "
+      "two particles at least this times the smaller radius, and every "
+      "gap to the box this times the radius, by shrinking the radii it "
+      "gives the fluid (the contact model keeps the true radii); > 0. "
+      "Smaller gaps cost more refinement; down to 1e-4 the 2D squeeze "
+      "follows the lubrication law (doc/cut_element.md).");
+    prm.declare_entry(
+      "Cut gap cells",
+      "2",
+      Patterns::Double(0.),
+      "With 'cut finite element': the cut cells near another particle are "
+      "refined until this many cells span the gap (0: only until no cell "
+      "is cut by two surfaces).");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  CutElementParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Fluid");
+    {
+      minimum_gap   = prm.get_double("Cut minimum gap");
+      gap_cells     = prm.get_double("Cut gap cells");
+      linear_solver = prm.get("Cut linear solver");
+    }
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  CutElementParameters::check(const Parameters &scene) const
+  {
+    const std::string       model  = "'Fluid/Model = cut finite element'";
+    const DomainParameters &domain = scene.domain;
+    if (domain.boundary_condition != BoundaryCondition::linear_shear &&
+        domain.boundary_condition != BoundaryCondition::sliding_walls)
+      throw InputError("entry 'Domain/Boundary condition' is not 'linear "
+                       "shear' or 'sliding walls' with " +
+                       model +
+                       "; allowed: 'linear shear' or 'sliding walls' (the "
+                       "cut element's box has the shear's velocity on "
+                       "every face, or on the walls y = 0, 1 with the other "
+                       "faces periodic)");
+    for (unsigned int d = 0; d < scene.dimension; ++d)
+      if (domain.lower_left[d] != 0. || domain.upper_right[d] != 1.)
+        {
+          std::ostringstream m;
+          m << "entries 'Domain/Lower left' and 'Domain/Upper right' give "
+            << domain.lower_left[d] << " to " << domain.upper_right[d] << " in "
+            << "xyz"[d] << " with " << model
+            << "; allowed: the unit box, 0 to 1 in every direction";
+          throw InputError(m.str());
+        }
+    if (!(minimum_gap > 0.))
+      throw InputError("entry 'Fluid/Cut minimum gap' has the value " +
+                       std::to_string(minimum_gap) +
+                       "; allowed: a value > 0 (the cut element cannot "
+                       "solve touching particles)");
+    if (scene.lubrication.enabled)
+      throw InputError("entry 'Fluid/Lubrication correction' is true with " +
+                       model +
+                       "; allowed: false (the cut element resolves the "
+                       "gaps down to Fluid/Cut minimum gap)");
+    if (scene.output.field_output_interval > 0)
+      throw InputError("entry 'Output/Field output interval' is " +
+                       std::to_string(scene.output.field_output_interval) +
+                       " with " + model +
+                       "; allowed: 0 (the cut element writes no fields "
+                       "yet)");
+  }
+} // namespace Fidus
