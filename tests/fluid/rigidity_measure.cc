@@ -125,7 +125,7 @@ main(int argc, char **argv)
               5e-3);
   check_range("Rigidity measure = box: Rigidity tolerance (auto)",
               Fidus::read_parameters_from_string(scene(1., 7, "box", "", 20))
-                .rigidity_tolerance,
+                .fictitious_domain.rigidity_tolerance,
               1e-3,
               1e-3);
   // And the loop stops on the per-particle residual with them.
