@@ -85,108 +85,218 @@ namespace Fidus::Contact
 
 
 
+  /// The uniform grid of the cell list: which directions are periodic,
+  /// where the cells start, how large they are and how many there are.
+  struct internal::CellGrid
+  {
+    std::array<bool, 3>        periodic{{false, false, false}};
+    bool                       any_periodic = false;
+    std::array<double, 3>      period{{0., 0., 0.}};
+    Vec3                       lo{{0., 0., 0.}};
+    Vec3                       cell_size{{0., 0., 0.}};
+    std::array<std::size_t, 3> nc{{1, 1, 1}};
+    std::size_t                n_cells = 1;
+
+    /// @p x wrapped into [0, L) if direction @p d is periodic, else @p x.
+    double
+    wrapped(const double x, const unsigned d) const
+    {
+      return periodic[d] ? wrap_into_period(x, period[d]) : x;
+    }
+  };
+
+
+
+  namespace
+  {
+    using internal::CellGrid;
+
+
+
+    /// The cell grid for the given particles and cut-off: cells large
+    /// enough that only neighbouring cells can hold a partner, but not so
+    /// many that the grid outgrows the number of particles.
+    CellGrid
+    build_cell_grid(const std::vector<Vec3>     &positions,
+                    const std::vector<double>   &radii,
+                    const double                 cutoff,
+                    const unsigned               dim,
+                    const std::array<double, 3> &period)
+    {
+      const std::size_t n = positions.size();
+      CellGrid          grid;
+      grid.period = period;
+
+      // In a periodic direction the particles are binned by their coordinate
+      // wrapped into [0, L) (the box origin does not matter, only the
+      // period), and the cells tile [0, L) exactly so that the neighbour of
+      // the last cell is the first one.
+      std::array<bool, 3> &periodic = grid.periodic;
+      for (unsigned d = 0; d < dim; ++d)
+        {
+          periodic[d]       = period[d] > 0.;
+          grid.any_periodic = grid.any_periodic || periodic[d];
+        }
+
+      double a_max = 0.;
+      Vec3   lo{{0., 0., 0.}}, hi{{0., 0., 0.}};
+      for (unsigned d = 0; d < dim; ++d)
+        {
+          lo[d] = std::numeric_limits<double>::max();
+          hi[d] = -std::numeric_limits<double>::max();
+        }
+      for (std::size_t i = 0; i < n; ++i)
+        {
+          a_max = std::max(a_max, radii[i]);
+          for (unsigned d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], positions[i][d]);
+              hi[d] = std::max(hi[d], positions[i][d]);
+            }
+        }
+      for (unsigned d = 0; d < dim; ++d)
+        if (periodic[d])
+          {
+            lo[d] = 0.;
+            hi[d] = period[d];
+          }
+
+      // Any pair with gap below the cut-off has its centres closer than
+      // 2 a_max + cutoff, so with cells at least that large only the 3^d
+      // neighbouring cells can hold a partner. Larger cells are still
+      // correct; they are used when the particles are so spread out that the
+      // grid would hold many more cells than particles (memory and time
+      // would then grow with the box, not with N).
+      double h = std::max(2. * a_max + std::max(cutoff, 0.), 1e-300);
+      // Cells along a periodic direction: as many as fit, at least one;
+      // their size L / n_cells is then >= h.
+      auto n_periodic_cells = [&](const unsigned d, const double size) {
+        return std::max(1., std::floor(period[d] / size));
+      };
+      std::array<std::size_t, 3> &nc = grid.nc;
+      for (int attempt = 0; attempt < 64; ++attempt)
+        {
+          double total = 1.;
+          for (unsigned d = 0; d < dim; ++d)
+            total *= periodic[d] ? n_periodic_cells(d, h) :
+                                   std::floor((hi[d] - lo[d]) / h) + 1.;
+          const double max_cells = 2. * static_cast<double>(n) + 64.;
+          if (total <= max_cells)
+            break;
+          h *= std::max(1.01, std::pow(total / max_cells, 1. / dim));
+        }
+      Vec3 cell_size{{h, h, h}};
+      for (unsigned d = 0; d < dim; ++d)
+        if (periodic[d])
+          {
+            nc[d] = static_cast<std::size_t>(n_periodic_cells(d, h));
+            // Guard against L / n rounding to just below h.
+            while (nc[d] > 1 && period[d] / static_cast<double>(nc[d]) < h)
+              --nc[d];
+            cell_size[d] = period[d] / static_cast<double>(nc[d]);
+          }
+        else
+          nc[d] = static_cast<std::size_t>(std::floor((hi[d] - lo[d]) / h)) + 1;
+      grid.n_cells   = nc[0] * nc[1] * nc[2];
+      grid.lo        = lo;
+      grid.cell_size = cell_size;
+      return grid;
+    }
+
+
+
+    /// The offsets of the neighbour cells that a cell visits, so that each
+    /// unordered pair of cells is visited once.
+    std::vector<std::array<int, 3>>
+    half_stencil(const unsigned dim, const bool any_periodic)
+    {
+      // Half stencil: each unordered pair of cells is visited once. Without
+      // periodic directions these are the lexicographically positive offsets
+      // in (z, y, x) order. With periodic directions a cell instead visits,
+      // among all 3^d - 1 wrapped neighbours, those with a larger index than
+      // its own (the same set without periodicity, in the same order).
+      std::vector<std::array<int, 3>> stencil;
+      for (int dz = (dim == 3 ? -1 : 0); dz <= (dim == 3 ? 1 : 0); ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (any_periodic ? (dx != 0 || dy != 0 || dz != 0) :
+                               (dz > 0 || (dz == 0 && dy > 0) ||
+                                (dz == 0 && dy == 0 && dx > 0)))
+              stencil.push_back({{dx, dy, dz}});
+      return stencil;
+    }
+
+
+
+    /// The cells that cell @p c (at @p index) visits through @p stencil,
+    /// each once, into @p neighbours.
+    void
+    collect_neighbour_cells(const CellGrid                        &grid,
+                            const std::vector<std::array<int, 3>> &stencil,
+                            const std::array<std::size_t, 3>      &index,
+                            const std::size_t                      c,
+                            std::vector<std::size_t>              &neighbours)
+    {
+      const auto &nc = grid.nc;
+      neighbours.clear();
+      for (const auto &s : stencil)
+        {
+          std::size_t c2     = 0;
+          bool        inside = true;
+          for (int d = 2; d >= 0 && inside; --d)
+            {
+              long       k = static_cast<long>(index[d]) + s[d];
+              const long m = static_cast<long>(nc[d]);
+              if (grid.periodic[d])
+                k = (k + m) % m;
+              else if (k < 0 || k >= m)
+                inside = false;
+              c2 = c2 * nc[d] + static_cast<std::size_t>(k);
+            }
+          if (!inside)
+            continue;
+          // With fewer than 3 cells along a periodic direction,
+          // different offsets reach the same cell (or the cell
+          // itself): each is kept once, else its pairs would be
+          // found twice.
+          if (grid.any_periodic &&
+              (c2 <= c || std::find(neighbours.begin(), neighbours.end(), c2) !=
+                            neighbours.end()))
+            continue;
+          neighbours.push_back(c2);
+        }
+    }
+  } // namespace
+
+
+
   void
-  PairSearch::find_pairs_cell_list(const std::vector<Vec3>   &positions,
-                                   const std::vector<double> &radii,
-                                   const double               cutoff,
-                                   std::vector<Pair>         &pairs)
+  PairSearch::sort_into_cells(const std::vector<Vec3>   &positions,
+                              const std::vector<double> &radii,
+                              const CellGrid            &grid)
   {
     const std::size_t n   = positions.size();
     const unsigned    dim = dimension;
-
-    // In a periodic direction the particles are binned by their coordinate
-    // wrapped into [0, L) (the box origin does not matter, only the period),
-    // and the cells tile [0, L) exactly so that the neighbour of the last
-    // cell is the first one.
-    std::array<bool, 3> periodic{{false, false, false}};
-    bool                any_periodic = false;
-    for (unsigned d = 0; d < dim; ++d)
-      {
-        periodic[d]  = period[d] > 0.;
-        any_periodic = any_periodic || periodic[d];
-      }
-    auto wrapped = [&](const double x, const unsigned d) {
-      return periodic[d] ? wrap_into_period(x, period[d]) : x;
-    };
-
-    double a_max = 0.;
-    Vec3   lo{{0., 0., 0.}}, hi{{0., 0., 0.}};
-    for (unsigned d = 0; d < dim; ++d)
-      {
-        lo[d] = std::numeric_limits<double>::max();
-        hi[d] = -std::numeric_limits<double>::max();
-      }
-    for (std::size_t i = 0; i < n; ++i)
-      {
-        a_max = std::max(a_max, radii[i]);
-        for (unsigned d = 0; d < dim; ++d)
-          {
-            lo[d] = std::min(lo[d], positions[i][d]);
-            hi[d] = std::max(hi[d], positions[i][d]);
-          }
-      }
-    for (unsigned d = 0; d < dim; ++d)
-      if (periodic[d])
-        {
-          lo[d] = 0.;
-          hi[d] = period[d];
-        }
-
-    // Any pair with gap below the cut-off has its centres closer than
-    // 2 a_max + cutoff, so with cells at least that large only the 3^d
-    // neighbouring cells can hold a partner. Larger cells are still correct;
-    // they are used when the particles are so spread out that the grid would
-    // hold many more cells than particles (memory and time would then grow
-    // with the box, not with N).
-    double h = std::max(2. * a_max + std::max(cutoff, 0.), 1e-300);
-    // Cells along a periodic direction: as many as fit, at least one; their
-    // size L / n_cells is then >= h.
-    auto n_periodic_cells = [&](const unsigned d, const double size) {
-      return std::max(1., std::floor(period[d] / size));
-    };
-    std::array<std::size_t, 3> nc{{1, 1, 1}};
-    for (int attempt = 0; attempt < 64; ++attempt)
-      {
-        double total = 1.;
-        for (unsigned d = 0; d < dim; ++d)
-          total *= periodic[d] ? n_periodic_cells(d, h) :
-                                 std::floor((hi[d] - lo[d]) / h) + 1.;
-        const double max_cells = 2. * static_cast<double>(n) + 64.;
-        if (total <= max_cells)
-          break;
-        h *= std::max(1.01, std::pow(total / max_cells, 1. / dim));
-      }
-    Vec3 cell_size{{h, h, h}};
-    for (unsigned d = 0; d < dim; ++d)
-      if (periodic[d])
-        {
-          nc[d] = static_cast<std::size_t>(n_periodic_cells(d, h));
-          // Guard against L / n rounding to just below h.
-          while (nc[d] > 1 && period[d] / static_cast<double>(nc[d]) < h)
-            --nc[d];
-          cell_size[d] = period[d] / static_cast<double>(nc[d]);
-        }
-      else
-        nc[d] = static_cast<std::size_t>(std::floor((hi[d] - lo[d]) / h)) + 1;
-    const std::size_t n_cells = nc[0] * nc[1] * nc[2];
+    const auto       &nc  = grid.nc;
 
     // Counting sort of the particles into the cells.
     cell_of.resize(n);
-    cell_start.assign(n_cells + 1, 0);
+    cell_start.assign(grid.n_cells + 1, 0);
     for (std::size_t i = 0; i < n; ++i)
       {
         std::size_t c = 0;
         for (int d = static_cast<int>(dim) - 1; d >= 0; --d)
           {
             auto k = static_cast<std::size_t>(
-              (wrapped(positions[i][d], d) - lo[d]) / cell_size[d]);
+              (grid.wrapped(positions[i][d], d) - grid.lo[d]) /
+              grid.cell_size[d]);
             k = std::min(k, nc[d] - 1);
             c = c * nc[d] + k;
           }
         cell_of[i] = static_cast<std::uint32_t>(c);
         ++cell_start[c + 1];
       }
-    for (std::size_t c = 0; c < n_cells; ++c)
+    for (std::size_t c = 0; c < grid.n_cells; ++c)
       cell_start[c + 1] += cell_start[c];
     sorted_index.resize(n);
     sorted_position.resize(n);
@@ -199,114 +309,110 @@ namespace Fidus::Contact
           sorted_index[slot]       = static_cast<std::uint32_t>(i);
           for (unsigned d = 0; d < 3; ++d)
             sorted_position[slot][d] =
-              d < dim ? wrapped(positions[i][d], d) : positions[i][d];
+              d < dim ? grid.wrapped(positions[i][d], d) : positions[i][d];
           sorted_radius[slot] = radii[i];
         }
     }
+  }
 
-    // Half stencil: each unordered pair of cells is visited once. Without
-    // periodic directions these are the lexicographically positive offsets
-    // in (z, y, x) order. With periodic directions a cell instead visits,
-    // among all 3^d - 1 wrapped neighbours, those with a larger index than
-    // its own (the same set without periodicity, in the same order).
-    std::vector<std::array<int, 3>> stencil;
-    for (int dz = (dim == 3 ? -1 : 0); dz <= (dim == 3 ? 1 : 0); ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (any_periodic ? (dx != 0 || dy != 0 || dz != 0) :
-                             (dz > 0 || (dz == 0 && dy > 0) ||
-                              (dz == 0 && dy == 0 && dx > 0)))
-            stencil.push_back({{dx, dy, dz}});
 
-    auto add = [&](const std::uint32_t p, const std::uint32_t q) {
+
+  template <typename Close>
+  void
+  PairSearch::scan_cells(const CellGrid                        &grid,
+                         const std::vector<std::array<int, 3>> &stencil,
+                         const Close                           &close,
+                         std::vector<Pair>                     &pairs) const
+  {
+    const auto &nc  = grid.nc;
+    auto        add = [&](const std::uint32_t p, const std::uint32_t q) {
       const std::uint32_t i = sorted_index[p], j = sorted_index[q];
       pairs.emplace_back(std::min(i, j), std::max(i, j));
     };
 
+    std::vector<std::size_t> neighbours;
+    neighbours.reserve(stencil.size());
+    for (std::size_t iz = 0; iz < nc[2]; ++iz)
+      for (std::size_t iy = 0; iy < nc[1]; ++iy)
+        for (std::size_t ix = 0; ix < nc[0]; ++ix)
+          {
+            const std::size_t c     = ix + nc[0] * (iy + nc[1] * iz);
+            const auto        begin = cell_start[c], end = cell_start[c + 1];
+            if (begin == end)
+              continue;
+            for (auto p = begin; p < end; ++p)
+              for (auto q = p + 1; q < end; ++q)
+                if (close(p, q))
+                  add(p, q);
+
+            collect_neighbour_cells(grid,
+                                    stencil,
+                                    {{ix, iy, iz}},
+                                    c,
+                                    neighbours);
+
+            for (const std::size_t c2 : neighbours)
+              {
+                const auto begin2 = cell_start[c2], end2 = cell_start[c2 + 1];
+                for (auto p = begin; p < end; ++p)
+                  for (auto q = begin2; q < end2; ++q)
+                    if (close(p, q))
+                      add(p, q);
+              }
+          }
+  }
+
+
+
+  void
+  PairSearch::find_pairs_cell_list(const std::vector<Vec3>   &positions,
+                                   const std::vector<double> &radii,
+                                   const double               cutoff,
+                                   std::vector<Pair>         &pairs)
+  {
+    const unsigned dim = dimension;
+
+    const CellGrid grid =
+      build_cell_grid(positions, radii, cutoff, dim, period);
+    sort_into_cells(positions, radii, grid);
+    const std::vector<std::array<int, 3>> stencil =
+      half_stencil(dim, grid.any_periodic);
+
     // The scan over the cells, for a distance test @p close (with or
     // without minimum image, so that the common non-periodic case does not
     // pay for it).
-    std::vector<std::size_t> neighbours;
-    neighbours.reserve(stencil.size());
-    auto scan = [&](const auto &close) {
-      for (std::size_t iz = 0; iz < nc[2]; ++iz)
-        for (std::size_t iy = 0; iy < nc[1]; ++iy)
-          for (std::size_t ix = 0; ix < nc[0]; ++ix)
+    if (grid.any_periodic)
+      scan_cells(
+        grid,
+        stencil,
+        [&](const std::uint32_t p, const std::uint32_t q) {
+          const double reach = sorted_radius[p] + sorted_radius[q] + cutoff;
+          double       r2    = 0.;
+          for (unsigned d = 0; d < dim; ++d)
             {
-              const std::size_t c     = ix + nc[0] * (iy + nc[1] * iz);
-              const auto        begin = cell_start[c], end = cell_start[c + 1];
-              if (begin == end)
-                continue;
-              for (auto p = begin; p < end; ++p)
-                for (auto q = p + 1; q < end; ++q)
-                  if (close(p, q))
-                    add(p, q);
-
-              neighbours.clear();
-              const std::array<std::size_t, 3> index{{ix, iy, iz}};
-              for (const auto &s : stencil)
-                {
-                  std::size_t c2     = 0;
-                  bool        inside = true;
-                  for (int d = 2; d >= 0 && inside; --d)
-                    {
-                      long       k = static_cast<long>(index[d]) + s[d];
-                      const long m = static_cast<long>(nc[d]);
-                      if (periodic[d])
-                        k = (k + m) % m;
-                      else if (k < 0 || k >= m)
-                        inside = false;
-                      c2 = c2 * nc[d] + static_cast<std::size_t>(k);
-                    }
-                  if (!inside)
-                    continue;
-                  // With fewer than 3 cells along a periodic direction,
-                  // different offsets reach the same cell (or the cell
-                  // itself): each is kept once, else its pairs would be
-                  // found twice.
-                  if (any_periodic &&
-                      (c2 <= c ||
-                       std::find(neighbours.begin(), neighbours.end(), c2) !=
-                         neighbours.end()))
-                    continue;
-                  neighbours.push_back(c2);
-                }
-
-              for (const std::size_t c2 : neighbours)
-                {
-                  const auto begin2 = cell_start[c2], end2 = cell_start[c2 + 1];
-                  for (auto p = begin; p < end; ++p)
-                    for (auto q = begin2; q < end2; ++q)
-                      if (close(p, q))
-                        add(p, q);
-                }
+              const double dx =
+                minimum_image(sorted_position[q][d] - sorted_position[p][d],
+                              period[d]);
+              r2 += dx * dx;
             }
-    };
-
-    if (any_periodic)
-      scan([&](const std::uint32_t p, const std::uint32_t q) {
-        const double reach = sorted_radius[p] + sorted_radius[q] + cutoff;
-        double       r2    = 0.;
-        for (unsigned d = 0; d < dim; ++d)
-          {
-            const double dx =
-              minimum_image(sorted_position[q][d] - sorted_position[p][d],
-                            period[d]);
-            r2 += dx * dx;
-          }
-        return reach > 0. && r2 < reach * reach;
-      });
+          return reach > 0. && r2 < reach * reach;
+        },
+        pairs);
     else
-      scan([&](const std::uint32_t p, const std::uint32_t q) {
-        const double reach = sorted_radius[p] + sorted_radius[q] + cutoff;
-        double       r2    = 0.;
-        for (unsigned d = 0; d < dim; ++d)
-          {
-            const double dx = sorted_position[q][d] - sorted_position[p][d];
-            r2 += dx * dx;
-          }
-        return reach > 0. && r2 < reach * reach;
-      });
+      scan_cells(
+        grid,
+        stencil,
+        [&](const std::uint32_t p, const std::uint32_t q) {
+          const double reach = sorted_radius[p] + sorted_radius[q] + cutoff;
+          double       r2    = 0.;
+          for (unsigned d = 0; d < dim; ++d)
+            {
+              const double dx = sorted_position[q][d] - sorted_position[p][d];
+              r2 += dx * dx;
+            }
+          return reach > 0. && r2 < reach * reach;
+        },
+        pairs);
   }
 
 

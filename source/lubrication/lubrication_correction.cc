@@ -435,34 +435,106 @@ namespace Fidus::Contact
 
 
 
-  LubricationStatistics
-  LubricationCorrection::correct(const std::vector<Vec3>   &positions,
-                                 const std::vector<double> &radii,
-                                 const std::vector<Vec3>   &u_star,
-                                 const std::vector<Vec3>   &w_star,
-                                 std::vector<Vec3>         &u,
-                                 std::vector<Vec3>         &w,
-                                 const double               dt)
+  namespace
   {
-    const std::size_t  n   = positions.size();
-    const unsigned int dim = settings.dimension;
-    if (radii.size() != n || u_star.size() != n || w_star.size() != n)
-      throw ContactError("lubrication: positions, radii and velocities "
-                         "differ in number");
-    for (std::size_t i = 0; i < n; ++i)
-      for (unsigned int d = 0; d < 3; ++d)
-        if (!std::isfinite(positions[i][d]) || !std::isfinite(u_star[i][d]) ||
-            !std::isfinite(w_star[i][d]))
-          throw ContactError("lubrication: particle " + std::to_string(i) +
-                             " has a position or velocity that is not a "
-                             "finite number");
+    /// Throws ContactError unless the particle arrays agree in size and hold
+    /// finite numbers only.
+    void
+    check_particle_data(const std::vector<Vec3>   &positions,
+                        const std::vector<double> &radii,
+                        const std::vector<Vec3>   &u_star,
+                        const std::vector<Vec3>   &w_star)
+    {
+      const std::size_t n = positions.size();
+      if (radii.size() != n || u_star.size() != n || w_star.size() != n)
+        throw ContactError("lubrication: positions, radii and velocities "
+                           "differ in number");
+      for (std::size_t i = 0; i < n; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          if (!std::isfinite(positions[i][d]) || !std::isfinite(u_star[i][d]) ||
+              !std::isfinite(w_star[i][d]))
+            throw ContactError("lubrication: particle " + std::to_string(i) +
+                               " has a position or velocity that is not a "
+                               "finite number");
+    }
+  } // namespace
 
-    LubricationStatistics stat;
-    bond.clear();
-    u                = u_star;
-    w                = w_star;
-    const double h_c = settings.range;
-    const double h_f =
+
+
+  /// The solution of the corrected system and what the bond loads and the
+  /// step correction need from its set-up.
+  struct LubricationCorrection::CorrectedSystem
+  {
+    /// The drag of each particle.
+    std::vector<double> zeta;
+    /// The corrected generalised velocities (6 per particle).
+    std::vector<double> x;
+    /// The predicted generalised velocities u*, w*.
+    std::vector<double> x_star;
+    /// The part of u* driven by the external forces; empty if not used.
+    std::vector<double> x_force;
+  };
+
+
+
+  bool
+  LubricationCorrection::fill_resistances(LubricationBond &b,
+                                          const double     a_small,
+                                          const double     range,
+                                          const double     flow_range,
+                                          const double     tangential_range,
+                                          LubricationStatistics &stat) const
+  {
+    // A bond is kept only where the true resistance exceeds a resolved
+    // one, i.e. where the mesh misses some of the squeeze. A wall gets the
+    // same resolved resistance in both responses.
+    const unsigned int dim   = settings.dimension;
+    const double       floor = settings.roughness * a_small;
+    if (b.gap < floor)
+      ++stat.n_rough;
+    const double gap      = std::max(b.gap, floor);
+    const auto   resolved = [&](const double r) {
+      return settings.nothing_resolved ? 0. :
+                                           squeeze_resistance(dim,
+                                                            settings.viscosity,
+                                                            b.a_i,
+                                                            b.a_j,
+                                                            std::max(gap, r));
+    };
+    b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
+    b.r_resolved       = resolved(flow_range);
+    b.r_resolved_force = resolved(range);
+    if (settings.tangential)
+      {
+        b.t_true     = tangential_resistance(dim,
+                                         settings.viscosity,
+                                         b.a_i,
+                                         b.a_j,
+                                         gap,
+                                         tangential_range);
+        b.t_resolved = settings.nothing_resolved ?
+                         0. :
+                         tangential_resistance(dim,
+                                               settings.viscosity,
+                                               b.a_i,
+                                               b.a_j,
+                                               std::max(gap, tangential_range),
+                                               tangential_range);
+      }
+    return b.r_true > std::min(b.r_resolved, b.r_resolved_force) ||
+           (settings.tangential && b.t_true > b.t_resolved);
+  }
+
+
+
+  void
+  LubricationCorrection::collect_bonds(const std::vector<Vec3>   &positions,
+                                       const std::vector<double> &radii,
+                                       LubricationStatistics     &stat)
+  {
+    const std::size_t n   = positions.size();
+    const double      h_c = settings.range;
+    const double      h_f =
       settings.flow_range >= 0. ? settings.flow_range : settings.range;
     const double h_w =
       settings.wall_range >= 0. ? settings.wall_range : settings.range;
@@ -471,52 +543,6 @@ namespace Fidus::Contact
     const double h_wt = settings.tangential_wall_range >= 0. ?
                           settings.tangential_wall_range :
                           h_w;
-
-    // A bond is kept only where the true resistance exceeds a resolved
-    // one, i.e. where the mesh misses some of the squeeze. A wall gets the
-    // same resolved resistance in both responses.
-    const auto make_bond = [&](LubricationBond &b,
-                               const double     a_small,
-                               const double     range,
-                               const double     flow_range,
-                               const double     tangential_range) {
-      const double floor = settings.roughness * a_small;
-      if (b.gap < floor)
-        ++stat.n_rough;
-      const double gap      = std::max(b.gap, floor);
-      const auto   resolved = [&](const double r) {
-        return settings.nothing_resolved ?
-                   0. :
-                   squeeze_resistance(dim,
-                                    settings.viscosity,
-                                    b.a_i,
-                                    b.a_j,
-                                    std::max(gap, r));
-      };
-      b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
-      b.r_resolved       = resolved(flow_range);
-      b.r_resolved_force = resolved(range);
-      if (settings.tangential)
-        {
-          b.t_true = tangential_resistance(dim,
-                                           settings.viscosity,
-                                           b.a_i,
-                                           b.a_j,
-                                           gap,
-                                           tangential_range);
-          b.t_resolved =
-            settings.nothing_resolved ?
-              0. :
-              tangential_resistance(dim,
-                                    settings.viscosity,
-                                    b.a_i,
-                                    b.a_j,
-                                    std::max(gap, tangential_range),
-                                    tangential_range);
-        }
-      return b.r_true > std::min(b.r_resolved, b.r_resolved_force) ||
-             (settings.tangential && b.t_true > b.t_resolved);
-    };
 
     const double h_pairs =
       std::max(std::max(h_c, h_f), settings.tangential ? h_t : 0.);
@@ -536,7 +562,12 @@ namespace Fidus::Contact
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (make_bond(b, std::min(radii[i], radii[j]), h_c, h_f, h_t))
+        if (fill_resistances(b,
+                             std::min(radii[i], radii[j]),
+                             h_c,
+                             h_f,
+                             h_t,
+                             stat))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -561,47 +592,25 @@ namespace Fidus::Contact
           b.wall_velocity =
             wall_velocity_at ? wall_velocity_at(wall, foot) : wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
-          if (make_bond(b, radii[i], h_w, h_w, h_wt))
+          if (fill_resistances(b, radii[i], h_w, h_w, h_wt, stat))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;
             }
         }
-    if (bond.empty())
-      return stat;
+  }
 
-    // Right-hand side b = A_resolved u* + (the forcing of moving walls,
-    // true minus resolved) + (the external forces' part, below), solved for
-    // A_true u = b by Jacobi-preconditioned conjugate gradients (A_true is
-    // the drag plus a sum of positive semi-definite bond terms: symmetric
-    // positive definite).
-    std::vector<double> zeta(n), zeta_rot(n), x(6 * n), rhs;
-    for (std::size_t i = 0; i < n; ++i)
-      {
-        zeta[i]     = drag(radii[i]);
-        zeta_rot[i] = rotational_drag(radii[i]);
-        for (unsigned int d = 0; d < 3; ++d)
-          {
-            x[6 * i + d]     = u_star[i][d];
-            x[6 * i + 3 + d] = w_star[i][d];
-          }
-      }
-    const std::vector<double> x_star = x;
-    apply(zeta, zeta_rot, Resistance::resolved, x, rhs);
-    const auto wall_forcing = [&](const LubricationBond &b, const bool res) {
-      return loads_of_sliding(b,
-                              res ? b.t_resolved : b.t_true,
-                              dim,
-                              Local{},
-                              true);
-    };
-    if (settings.tangential)
-      for (const LubricationBond &b : bond)
-        if (is_wall(b))
-          {
-            scatter_add(b, wall_forcing(b, false), 1., rhs);
-            scatter_add(b, wall_forcing(b, true), -1., rhs);
-          }
+
+
+  std::vector<double>
+  LubricationCorrection::subtract_force_response(
+    const std::vector<double> &zeta,
+    const std::vector<double> &zeta_rot,
+    std::vector<double>       &rhs,
+    LubricationStatistics     &stat) const
+  {
+    const std::size_t  n   = zeta.size();
+    const unsigned int dim = settings.dimension;
 
     // The part of u* that the external forces drive, as the mesh is
     // modelled to move under them (resolved resistance R(h_c)), and the
@@ -636,17 +645,71 @@ namespace Fidus::Contact
                       -1.,
                       rhs);
       }
+    return x_force;
+  }
+
+
+
+  LubricationCorrection::CorrectedSystem
+  LubricationCorrection::solve_corrected_system(
+    const std::vector<double> &radii,
+    const std::vector<Vec3>   &u_star,
+    const std::vector<Vec3>   &w_star,
+    LubricationStatistics     &stat) const
+  {
+    const std::size_t  n   = radii.size();
+    const unsigned int dim = settings.dimension;
+    CorrectedSystem    s;
+
+    // Right-hand side b = A_resolved u* + (the forcing of moving walls,
+    // true minus resolved) + (the external forces' part, below), solved for
+    // A_true u = b by Jacobi-preconditioned conjugate gradients (A_true is
+    // the drag plus a sum of positive semi-definite bond terms: symmetric
+    // positive definite).
+    std::vector<double> &zeta = s.zeta, &x = s.x;
+    std::vector<double>  zeta_rot(n), rhs;
+    zeta.resize(n);
+    x.resize(6 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      {
+        zeta[i]     = drag(radii[i]);
+        zeta_rot[i] = rotational_drag(radii[i]);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            x[6 * i + d]     = u_star[i][d];
+            x[6 * i + 3 + d] = w_star[i][d];
+          }
+      }
+    s.x_star = x;
+    apply(zeta, zeta_rot, Resistance::resolved, x, rhs);
+    const auto wall_forcing = [&](const LubricationBond &b, const bool res) {
+      return loads_of_sliding(b,
+                              res ? b.t_resolved : b.t_true,
+                              dim,
+                              Local{},
+                              true);
+    };
+    if (settings.tangential)
+      for (const LubricationBond &b : bond)
+        if (is_wall(b))
+          {
+            scatter_add(b, wall_forcing(b, false), 1., rhs);
+            scatter_add(b, wall_forcing(b, true), -1., rhs);
+          }
+
+    s.x_force = subtract_force_response(zeta, zeta_rot, rhs, stat);
     const bool forces_converged = stat.converged;
     solve(zeta, zeta_rot, Resistance::true_gap, rhs, x, stat);
     stat.converged &= forces_converged;
+    return s;
+  }
 
-    for (std::size_t i = 0; i < n; ++i)
-      for (unsigned int d = 0; d < dim; ++d)
-        u[i][d] = x[6 * i + d];
-    if (settings.tangential)
-      for (std::size_t i = 0; i < n; ++i)
-        for (unsigned int d = (dim == 3 ? 0 : 2); d < 3; ++d)
-          w[i][d] = x[6 * i + 3 + d];
+
+
+  void
+  LubricationCorrection::compute_bond_loads(const CorrectedSystem &s)
+  {
+    const unsigned int dim = settings.dimension;
 
     // The loads each bond adds: the true resistance on the corrected
     // velocities minus the resolved one on the predicted velocities. The
@@ -655,12 +718,12 @@ namespace Fidus::Contact
     // matter of time integration, not a force).
     for (LubricationBond &b : bond)
       {
-        const Local v = gather(b, x), v_star = gather(b, x_star);
+        const Local v = gather(b, s.x), v_star = gather(b, s.x_star);
         b.force = b.r_true * closing_speed(b, v) -
                   b.r_resolved * closing_speed(b, v_star);
-        if (!x_force.empty())
+        if (!s.x_force.empty())
           b.force -= (b.r_resolved_force - b.r_resolved) *
-                     closing_speed(b, gather(b, x_force));
+                     closing_speed(b, gather(b, s.x_force));
         if (!settings.tangential)
           continue;
         Local       f = loads_of_sliding(b, b.t_true, dim, v, true);
@@ -675,31 +738,79 @@ namespace Fidus::Contact
         b.torque_i = part(f, 1);
         b.torque_j = part(f, 3);
       }
+  }
+
+
+
+  void
+  LubricationCorrection::add_step_opening(const std::vector<double> &zeta,
+                                          const double               dt,
+                                          std::vector<Vec3>         &u) const
+  {
+    const std::size_t  n   = u.size();
+    const unsigned int dim = settings.dimension;
 
     // The Euler step's tangential opening of each pair, taken off its
     // normal velocity and shared in proportion to the mobilities 1/zeta
     // (computed from the lubricated velocities of all pairs at once).
-    if (dt > 0.)
+    std::vector<Vec3> du(n, Vec3{{0., 0., 0.}});
+    for (const LubricationBond &b : bond)
       {
-        std::vector<Vec3> du(n, Vec3{{0., 0., 0.}});
-        for (const LubricationBond &b : bond)
+        if (b.j == LubricationBond::no_particle)
+          continue; // a particle sliding along a plane keeps its gap
+        const double wn      = -approach_speed(b, u);
+        const double opening = length_after_step(b, u, dt) - b.length - dt * wn;
+        const double zi = zeta[b.i], zj = zeta[b.j];
+        for (unsigned int d = 0; d < dim; ++d)
           {
-            if (b.j == LubricationBond::no_particle)
-              continue; // a particle sliding along a plane keeps its gap
-            const double wn = -approach_speed(b, u);
-            const double opening =
-              length_after_step(b, u, dt) - b.length - dt * wn;
-            const double zi = zeta[b.i], zj = zeta[b.j];
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                du[b.i][d] += opening / dt * zj / (zi + zj) * b.n[d];
-                du[b.j][d] -= opening / dt * zi / (zi + zj) * b.n[d];
-              }
+            du[b.i][d] += opening / dt * zj / (zi + zj) * b.n[d];
+            du[b.j][d] -= opening / dt * zi / (zi + zj) * b.n[d];
           }
-        for (std::size_t i = 0; i < n; ++i)
-          for (unsigned int d = 0; d < dim; ++d)
-            u[i][d] += du[i][d];
       }
+    for (std::size_t i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        u[i][d] += du[i][d];
+  }
+
+
+
+  LubricationStatistics
+  LubricationCorrection::correct(const std::vector<Vec3>   &positions,
+                                 const std::vector<double> &radii,
+                                 const std::vector<Vec3>   &u_star,
+                                 const std::vector<Vec3>   &w_star,
+                                 std::vector<Vec3>         &u,
+                                 std::vector<Vec3>         &w,
+                                 const double               dt)
+  {
+    const std::size_t  n   = positions.size();
+    const unsigned int dim = settings.dimension;
+    check_particle_data(positions, radii, u_star, w_star);
+
+    LubricationStatistics stat;
+    bond.clear();
+    u = u_star;
+    w = w_star;
+
+    collect_bonds(positions, radii, stat);
+    if (bond.empty())
+      return stat;
+
+    const CorrectedSystem s =
+      solve_corrected_system(radii, u_star, w_star, stat);
+
+    for (std::size_t i = 0; i < n; ++i)
+      for (unsigned int d = 0; d < dim; ++d)
+        u[i][d] = s.x[6 * i + d];
+    if (settings.tangential)
+      for (std::size_t i = 0; i < n; ++i)
+        for (unsigned int d = (dim == 3 ? 0 : 2); d < 3; ++d)
+          w[i][d] = s.x[6 * i + 3 + d];
+
+    compute_bond_loads(s);
+
+    if (dt > 0.)
+      add_step_opening(s.zeta, dt, u);
 
     return stat;
   }

@@ -10,6 +10,13 @@
 
 namespace Fidus::Contact
 {
+  namespace internal
+  {
+    /// The uniform grid of the cell list of PairSearch (defined in
+    /// pair_search.cc, where it is built and used).
+    struct CellGrid;
+  } // namespace internal
+
   /**
    * Finds every pair of spheres (discs in 2D) whose gap
    * D_ij = |X_j - X_i| - a_i - a_j is below a cut-off distance (the alert
@@ -104,6 +111,25 @@ namespace Fidus::Contact
                          const std::vector<double> &radii,
                          double                     cutoff,
                          std::vector<Pair>         &pairs);
+
+    /// The counting sort of the particles into the cells of @p grid: fills
+    /// the CSR arrays and the particle data in cell order. Separate from
+    /// the scan so that each stage of the cell list reads on its own.
+    void
+    sort_into_cells(const std::vector<Vec3>   &positions,
+                    const std::vector<double> &radii,
+                    const internal::CellGrid  &grid);
+
+    /// The scan over the sorted cells: appends to @p pairs every pair of
+    /// the same or a stencil-neighbour cell for which @p close(p, q) holds
+    /// (a template so that the distance test with or without minimum image
+    /// is inlined).
+    template <typename Close>
+    void
+    scan_cells(const internal::CellGrid              &grid,
+               const std::vector<std::array<int, 3>> &stencil,
+               const Close                           &close,
+               std::vector<Pair>                     &pairs) const;
 
     template <int dim>
     void

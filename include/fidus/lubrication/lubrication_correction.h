@@ -369,6 +369,56 @@ namespace Fidus::Contact
           std::vector<double>       &x,
           LubricationStatistics     &stat) const;
 
+    /// The solution of the corrected system with its drags, the predicted
+    /// velocities and the external forces' part (defined in the .cc file).
+    struct CorrectedSystem;
+
+    /// Sets the true and resolved resistances of bond @p b (gap floored at
+    /// the roughness of @p a_small) and says whether the bond is kept: the
+    /// same test for particle pairs and walls, hence one function.
+    bool
+    fill_resistances(LubricationBond       &b,
+                     double                 a_small,
+                     double                 range,
+                     double                 flow_range,
+                     double                 tangential_range,
+                     LubricationStatistics &stat) const;
+
+    /// Appends to the bonds those of the particle pairs, then of the walls,
+    /// within range of the squeeze; counts them in @p stat.
+    void
+    collect_bonds(const std::vector<Vec3>   &positions,
+                  const std::vector<double> &radii,
+                  LubricationStatistics     &stat);
+
+    /// Solves for the part of u* that the external forces drive and takes
+    /// the difference of the two resolved resistances on it off @p rhs;
+    /// returns that part, or nothing if both responses are the same.
+    std::vector<double>
+    subtract_force_response(const std::vector<double> &zeta,
+                            const std::vector<double> &zeta_rot,
+                            std::vector<double>       &rhs,
+                            LubricationStatistics     &stat) const;
+
+    /// Assembles and solves the corrected system A_true u = b for the
+    /// current bonds.
+    CorrectedSystem
+    solve_corrected_system(const std::vector<double> &radii,
+                           const std::vector<Vec3>   &u_star,
+                           const std::vector<Vec3>   &w_star,
+                           LubricationStatistics     &stat) const;
+
+    /// Stores in each bond the loads it adds to the corrected velocities.
+    void
+    compute_bond_loads(const CorrectedSystem &s);
+
+    /// Adds to @p u the Euler step's tangential opening of each pair (a time
+    /// integration matter, hence after the bond loads).
+    void
+    add_step_opening(const std::vector<double> &zeta,
+                     double                     dt,
+                     std::vector<Vec3>         &u) const;
+
     LubricationSettings settings;
     PairSearch          search;
     std::vector<Wall>   walls;

@@ -86,10 +86,11 @@ namespace Fidus
 
 
   template <int dim>
-  CutMesh<dim>::CutMesh(const std::vector<Point<dim>> &centers,
-                        const std::vector<double>     &radii,
-                        const Settings                &s)
-    : triangulation(Triangulation<dim>::limit_level_difference_at_vertices)
+  void
+  CutMesh<dim>::add_balls_with_images(const std::vector<Point<dim>> &centers,
+                                      const std::vector<double>     &radii,
+                                      const Settings                &s,
+                                      const std::vector<bool>       &periodic)
   {
     // Each particle, wrapped into the box along periodic axes, and its
     // images shifted by one period wherever they come within reach of the
@@ -97,9 +98,6 @@ namespace Fidus
     // few of its sizes of another particle) look that far.
     const double reach = (s.gap_cells + 1.) * std::sqrt(dim) *
                          std::ldexp(1., -int(s.global_level));
-    std::vector<bool> periodic(dim, false);
-    for (const unsigned int axis : s.periodic_axes)
-      periodic[axis] = true;
     for (unsigned int i = 0; i < centers.size(); ++i)
       {
         Point<dim> c = centers[i];
@@ -133,6 +131,14 @@ namespace Fidus
             ++shift[d];
           }
       }
+  }
+
+
+
+  template <int dim>
+  void
+  CutMesh<dim>::check_gaps() const
+  {
     for (unsigned int k = 0; k < balls.size(); ++k)
       for (unsigned int l = 0; l < k; ++l)
         if (balls[k].owner != balls[l].owner)
@@ -147,9 +153,14 @@ namespace Fidus
                 std::to_string(std::max(balls[k].owner, balls[l].owner)) +
                 " is " + std::to_string(gap) + "; allowed: > 0");
           }
+  }
 
-    GridGenerator::hyper_cube(triangulation, 0., 1., true);
-    triangulation.refine_global(s.global_level);
+
+
+  template <int dim>
+  void
+  CutMesh<dim>::refine_band(const Settings &s)
+  {
     for (unsigned int l = 0; l < s.band_levels; ++l)
       {
         for (const auto &cell : triangulation.active_cell_iterators())
@@ -165,7 +176,15 @@ namespace Fidus
           }
         triangulation.execute_coarsening_and_refinement();
       }
+  }
 
+
+
+  template <int dim>
+  void
+  CutMesh<dim>::refine_gaps(const Settings          &s,
+                            const std::vector<bool> &periodic)
+  {
     // A cell cut by two surfaces would need two level sets in one
     // quadrature: refine it until each cut cell meets one surface, and with
     // gap_cells > 0 refine the cut cells near another particle or a wall
@@ -220,6 +239,27 @@ namespace Fidus
           break;
         triangulation.execute_coarsening_and_refinement();
       }
+  }
+
+
+
+  template <int dim>
+  CutMesh<dim>::CutMesh(const std::vector<Point<dim>> &centers,
+                        const std::vector<double>     &radii,
+                        const Settings                &s)
+    : triangulation(Triangulation<dim>::limit_level_difference_at_vertices)
+  {
+    std::vector<bool> periodic(dim, false);
+    for (const unsigned int axis : s.periodic_axes)
+      periodic[axis] = true;
+    add_balls_with_images(centers, radii, s, periodic);
+    check_gaps();
+
+    GridGenerator::hyper_cube(triangulation, 0., 1., true);
+    triangulation.refine_global(s.global_level);
+    refine_band(s);
+
+    refine_gaps(s, periodic);
 
     // Periodic faces are made to match cell for cell: the coarser side of
     // every mismatch is refined until none is left.

@@ -12,25 +12,9 @@
 namespace Fidus
 {
   template <int dim>
-  CutSaddlePointSolver<dim>::CutSaddlePointSolver(
-    const SparseMatrix<double> &matrix,
-    const SparseMatrix<double> &pressure_mass,
-    const Layout               &layout,
-    CutVelocityMultigrid<dim>  *multigrid)
-    : matrix(matrix)
-    , multigrid(multigrid)
+  void
+  CutSaddlePointSolver<dim>::extract_blocks(const Layout &layout)
   {
-    Timer              timer;
-    const unsigned int n = matrix.m();
-    local.resize(n);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        auto &list = layout.kind[i] == 0 ? velocity :
-                     layout.kind[i] == 1 ? pressure :
-                                           rigid;
-        local[i]   = list.size();
-        list.push_back(i);
-      }
     const unsigned int n_u = velocity.size(), n_p = pressure.size(),
                        n_v = rigid.size();
 
@@ -81,47 +65,172 @@ namespace Fidus
     extract(velocity_and_rigid, of_kind(1), n_p, coupling_sparsity, coupling);
     if (!multigrid)
       extract(rigid, of_kind(0), n_u, rigid_sparsity, rigid_coupling);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::build_pressure_schur(
+    const SparseMatrix<double> &pressure_mass,
+    const Layout               &layout)
+  {
+    const unsigned int n_p = pressure.size();
 
     // S = M / eta + C on the pressures: the system holds -C in its pressure
     // block. A constrained pressure (the pinned one) keeps its diagonal,
     // with the sign that makes -S^-1 its exact inverse.
-    {
-      DynamicSparsityPattern dsp(n_p, n_p);
-      for (const unsigned int i : pressure)
-        {
-          dsp.add(local[i], local[i]);
-          if (layout.constrained[i])
+    DynamicSparsityPattern dsp(n_p, n_p);
+    for (const unsigned int i : pressure)
+      {
+        dsp.add(local[i], local[i]);
+        if (layout.constrained[i])
+          continue;
+        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+          if (layout.kind[it->column()] == 1 &&
+              !layout.constrained[it->column()])
+            dsp.add(local[i], local[it->column()]);
+        for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
+          if (layout.kind[it->column()] == 1 &&
+              !layout.constrained[it->column()])
+            dsp.add(local[i], local[it->column()]);
+      }
+    pressure_sparsity.copy_from(dsp);
+    pressure_schur.reinit(pressure_sparsity);
+    for (const unsigned int i : pressure)
+      {
+        if (layout.constrained[i])
+          {
+            pressure_schur.set(local[i], local[i], -matrix.el(i, i));
             continue;
-          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-            if (layout.kind[it->column()] == 1 &&
-                !layout.constrained[it->column()])
-              dsp.add(local[i], local[it->column()]);
-          for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i);
-               ++it)
-            if (layout.kind[it->column()] == 1 &&
-                !layout.constrained[it->column()])
-              dsp.add(local[i], local[it->column()]);
-        }
-      pressure_sparsity.copy_from(dsp);
-      pressure_schur.reinit(pressure_sparsity);
-      for (const unsigned int i : pressure)
-        {
-          if (layout.constrained[i])
-            {
-              pressure_schur.set(local[i], local[i], -matrix.el(i, i));
-              continue;
-            }
-          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-            if (layout.kind[it->column()] == 1 &&
-                !layout.constrained[it->column()])
-              pressure_schur.add(local[i], local[it->column()], -it->value());
-          for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i);
-               ++it)
-            if (layout.kind[it->column()] == 1 &&
-                !layout.constrained[it->column()])
-              pressure_schur.add(local[i], local[it->column()], it->value());
-        }
-    }
+          }
+        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+          if (layout.kind[it->column()] == 1 &&
+              !layout.constrained[it->column()])
+            pressure_schur.add(local[i], local[it->column()], -it->value());
+        for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
+          if (layout.kind[it->column()] == 1 &&
+              !layout.constrained[it->column()])
+            pressure_schur.add(local[i], local[it->column()], it->value());
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::setup_velocity_amg(const Layout &layout)
+  {
+    const unsigned int n_u = velocity.size();
+
+    velocity_trilinos.reinit(velocity_matrix);
+    const unsigned int n_modes = dim * (dim + 1) / 2;
+    null_space                 = std::make_unique<Epetra_MultiVector>(
+      velocity_trilinos.trilinos_matrix().RowMap(),
+      n_modes);
+    Tensor<1, dim> centre;
+    for (unsigned int d = 0; d < dim; ++d)
+      centre[d] = 0.5;
+    for (unsigned int k = 0; k < n_u; ++k)
+      {
+        const unsigned int   i = velocity[k];
+        const Tensor<1, dim> r = layout.support_point[i] - centre;
+        for (unsigned int m = 0; m < n_modes; ++m)
+          (*null_space)[m][k] = rigid_mode<dim>(m, r)[layout.component[i]];
+      }
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true;
+    data.higher_order_elements = true;
+    // Four Chebyshev sweeps: against two, they took the FGMRES
+    // iterations of a 3D sphere at h = a/3.2 from 174 to 95, and the
+    // time from 42 s to 31 s; an aggregation threshold of 0.02 or 0.05
+    // saved a few iterations and cost more in setup (41 s, 46 s).
+    data.smoother_sweeps       = 4;
+    data.aggregation_threshold = 0.;
+    Teuchos::ParameterList              parameters;
+    std::unique_ptr<Epetra_MultiVector> unused;
+    data.set_parameters(parameters, unused, velocity_trilinos);
+    parameters.set("null space: type", "pre-computed");
+    parameters.set("null space: dimension", int(n_modes));
+    parameters.set("null space: vectors", null_space->Values());
+    velocity_amg.initialize(velocity_trilinos, parameters);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::compute_rigid_schur()
+  {
+    const unsigned int n_u = velocity.size(), n_v = rigid.size();
+
+    // Without the multigrid: W = A_uu^-1 A_uV column by column (A_uV =
+    // A_Vu^T, the system being symmetric), and S_V = A_VV - A_Vu W.
+    w.assign(n_v, Vector<double>(n_u));
+    Vector<double>     column(n_u), product(n_v);
+    FullMatrix<double> schur(n_v, n_v);
+    for (unsigned int k = 0; k < n_v; ++k)
+      {
+        column = 0.;
+        for (auto it = rigid_coupling.begin(k); it != rigid_coupling.end(k);
+             ++it)
+          column[it->column()] = it->value();
+        // W only enters the preconditioner: 1e-4 is enough (the FGMRES
+        // iterations are the same as with 1e-10, the setup is three times
+        // shorter).
+        SolverControl            control(1000, 1e-4 * column.l2_norm());
+        SolverCG<Vector<double>> cg(control);
+        try
+          {
+            cg.solve(velocity_matrix, w[k], column, velocity_amg);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            std::ostringstream message;
+            message << "CutSaddlePointSolver: CG on the velocity block "
+                       "(for the rigid unknowns' Schur complement) did not "
+                       "reach 1e-4 in 1000 iterations (reached "
+                    << e.last_residual / column.l2_norm()
+                    << "); is the Nitsche parameter too small?";
+            throw std::runtime_error(message.str());
+          }
+        statistics.setup_iterations += control.last_step();
+        rigid_coupling.vmult(product, w[k]);
+        for (unsigned int l = 0; l < n_v; ++l)
+          schur(l, k) = matrix.el(rigid[l], rigid[k]) - product[l];
+      }
+    rigid_schur_inverse.reinit(n_v, n_v);
+    rigid_schur_inverse.invert(schur);
+  }
+
+
+
+  template <int dim>
+  CutSaddlePointSolver<dim>::CutSaddlePointSolver(
+    const SparseMatrix<double> &matrix,
+    const SparseMatrix<double> &pressure_mass,
+    const Layout               &layout,
+    CutVelocityMultigrid<dim>  *multigrid)
+    : matrix(matrix)
+    , multigrid(multigrid)
+  {
+    Timer              timer;
+    const unsigned int n = matrix.m();
+    local.resize(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        auto &list = layout.kind[i] == 0 ? velocity :
+                     layout.kind[i] == 1 ? pressure :
+                                           rigid;
+        local[i]   = list.size();
+        list.push_back(i);
+      }
+    const unsigned int n_u = velocity.size(), n_p = pressure.size(),
+                       n_v = rigid.size();
+
+    extract_blocks(layout);
+
+    build_pressure_schur(pressure_mass, layout);
 
     // The multigrid on K; or the AMG of the velocity block, with the rigid
     // motions about the box's centre as near-null space: the viscous
@@ -130,39 +239,7 @@ namespace Fidus
     if (multigrid)
       multigrid->initialize(velocity_matrix, velocity, n_v);
     else
-      {
-        velocity_trilinos.reinit(velocity_matrix);
-        const unsigned int n_modes = dim * (dim + 1) / 2;
-        null_space                 = std::make_unique<Epetra_MultiVector>(
-          velocity_trilinos.trilinos_matrix().RowMap(),
-          n_modes);
-        Tensor<1, dim> centre;
-        for (unsigned int d = 0; d < dim; ++d)
-          centre[d] = 0.5;
-        for (unsigned int k = 0; k < n_u; ++k)
-          {
-            const unsigned int   i = velocity[k];
-            const Tensor<1, dim> r = layout.support_point[i] - centre;
-            for (unsigned int m = 0; m < n_modes; ++m)
-              (*null_space)[m][k] = rigid_mode<dim>(m, r)[layout.component[i]];
-          }
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = true;
-        // Four Chebyshev sweeps: against two, they took the FGMRES
-        // iterations of a 3D sphere at h = a/3.2 from 174 to 95, and the
-        // time from 42 s to 31 s; an aggregation threshold of 0.02 or 0.05
-        // saved a few iterations and cost more in setup (41 s, 46 s).
-        data.smoother_sweeps       = 4;
-        data.aggregation_threshold = 0.;
-        Teuchos::ParameterList              parameters;
-        std::unique_ptr<Epetra_MultiVector> unused;
-        data.set_parameters(parameters, unused, velocity_trilinos);
-        parameters.set("null space: type", "pre-computed");
-        parameters.set("null space: dimension", int(n_modes));
-        parameters.set("null space: vectors", null_space->Values());
-        velocity_amg.initialize(velocity_trilinos, parameters);
-      }
+      setup_velocity_amg(layout);
     pressure_trilinos.reinit(pressure_schur);
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
@@ -170,46 +247,8 @@ namespace Fidus
       pressure_amg.initialize(pressure_trilinos, data);
     }
 
-    // Without the multigrid: W = A_uu^-1 A_uV column by column (A_uV =
-    // A_Vu^T, the system being symmetric), and S_V = A_VV - A_Vu W.
     if (!multigrid)
-      {
-        w.assign(n_v, Vector<double>(n_u));
-        Vector<double>     column(n_u), product(n_v);
-        FullMatrix<double> schur(n_v, n_v);
-        for (unsigned int k = 0; k < n_v; ++k)
-          {
-            column = 0.;
-            for (auto it = rigid_coupling.begin(k); it != rigid_coupling.end(k);
-                 ++it)
-              column[it->column()] = it->value();
-            // W only enters the preconditioner: 1e-4 is enough (the FGMRES
-            // iterations are the same as with 1e-10, the setup is three times
-            // shorter).
-            SolverControl            control(1000, 1e-4 * column.l2_norm());
-            SolverCG<Vector<double>> cg(control);
-            try
-              {
-                cg.solve(velocity_matrix, w[k], column, velocity_amg);
-              }
-            catch (const SolverControl::NoConvergence &e)
-              {
-                std::ostringstream message;
-                message << "CutSaddlePointSolver: CG on the velocity block "
-                           "(for the rigid unknowns' Schur complement) did not "
-                           "reach 1e-4 in 1000 iterations (reached "
-                        << e.last_residual / column.l2_norm()
-                        << "); is the Nitsche parameter too small?";
-                throw std::runtime_error(message.str());
-              }
-            statistics.setup_iterations += control.last_step();
-            rigid_coupling.vmult(product, w[k]);
-            for (unsigned int l = 0; l < n_v; ++l)
-              schur(l, k) = matrix.el(rigid[l], rigid[k]) - product[l];
-          }
-        rigid_schur_inverse.reinit(n_v, n_v);
-        rigid_schur_inverse.invert(schur);
-      }
+      compute_rigid_schur();
 
     r_u.reinit(multigrid ? n_u + n_v : n_u);
     y_u.reinit(multigrid ? n_u + n_v : n_u);

@@ -134,6 +134,27 @@ namespace Fidus
     std::vector<Placement>    placements;
     std::vector<PeriodicPair> periodic_pairs;
 
+    /// Append to balls each particle wrapped into the box along the
+    /// periodic axes, and its images within reach of the box.
+    void
+    add_balls_with_images(const std::vector<Point<dim>> &centers,
+                          const std::vector<double>     &radii,
+                          const Settings                &s,
+                          const std::vector<bool>       &periodic);
+
+    /// Throw std::invalid_argument if two particles touch or overlap.
+    void
+    check_gaps() const;
+
+    /// Refine the band of cells along the particles' surfaces.
+    void
+    refine_band(const Settings &s);
+
+    /// Refine the cut cells cut twice or at a thin gap (to another particle
+    /// or a wall), within the level limit.
+    void
+    refine_gaps(const Settings &s, const std::vector<bool> &periodic);
+
     /// Flag the coarser cell of every unmatched pair across @p axis;
     /// true if any flag was set.
     bool

@@ -101,6 +101,26 @@ namespace Fidus
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
   private:
+    /// Copies the blocks of the system that the preconditioner needs: K or
+    /// A_uu, B^T with A_Vu, and A_Vu alone without the multigrid.
+    void
+    extract_blocks(const Layout &layout);
+
+    /// Assembles S = M / eta + C on the pressures, for its AMG.
+    void
+    build_pressure_schur(const SparseMatrix<double> &pressure_mass,
+                         const Layout               &layout);
+
+    /// Sets up the AMG of A_uu with the rigid motions as near-null space
+    /// (the preconditioner of the velocities without the multigrid).
+    void
+    setup_velocity_amg(const Layout &layout);
+
+    /// Computes W = A_uu^-1 A_uV and the inverse of S_V = A_VV - A_Vu W
+    /// (the rigid unknowns without the multigrid).
+    void
+    compute_rigid_schur();
+
     const SparseMatrix<double> &matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and
     /// each unknown's index within its kind.

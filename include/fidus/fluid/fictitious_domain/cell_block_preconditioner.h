@@ -104,138 +104,11 @@ namespace Fidus
       if (use_blocks == SmootherBlocks::none)
         return;
 
-      const MatrixFree<dim, double> &mf = *op.get_matrix_free();
-      const auto        &partitioner    = point_inverse.get_partitioner();
-      const IndexSet    &owned          = dofs.locally_owned_dofs();
-      const unsigned int n_owned        = point_inverse.locally_owned_size();
-      const unsigned int dofs_per_cell  = dofs.get_fe().n_dofs_per_cell();
-
-      // A DoF's free DoFs and weights after the constraints are resolved.
-      std::vector<std::pair<types::global_dof_index, double>> resolved_one;
-      auto resolve = [&](const types::global_dof_index g) {
-        resolved_one.clear();
-        if (constraints.is_constrained(g))
-          {
-            const auto *entries = constraints.get_constraint_entries(g);
-            if (entries != nullptr)
-              resolved_one.assign(entries->begin(), entries->end());
-          }
-        else
-          resolved_one.emplace_back(g, 1.);
-      };
-
-      // The ghost cells: with their viscosity, their element matrices
-      // complete the rows here; without it, the owned rows that they touch
-      // are incomplete here.
-      std::vector<unsigned char>           complete(n_owned, 1);
-      std::vector<types::global_dof_index> indices(dofs_per_cell);
-      std::unique_ptr<FEValues<dim>>       ghost_values;
-      op.with_points([&](auto n, const unsigned int quadrature) {
-        const QGauss<1>        gauss(decltype(n)::value);
-        const QGaussLobatto<1> lobatto(decltype(n)::value);
-        const Quadrature<dim>  points(quadrature == 0 ?
-                                       static_cast<Quadrature<1>>(gauss) :
-                                       static_cast<Quadrature<1>>(lobatto));
-        ghost_values =
-          std::make_unique<FEValues<dim>>(dofs.get_fe(),
-                                          points,
-                                          update_gradients | update_JxW_values |
-                                            update_quadrature_points);
-      });
-      struct GhostCell
-      {
-        typename DoFHandler<dim>::active_cell_iterator cell;
-        std::vector<double>                            eta;
-        bool                                           cut;
-      };
-      std::vector<GhostCell> ghosts;
-      for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_ghost())
-          {
-            if (ghost_viscosity)
-              {
-                GhostCell ghost{cell, {}, false};
-                ghost_values->reinit(cell);
-                ghost_viscosity(cell, *ghost_values, ghost.eta);
-                const auto [low, high] =
-                  std::minmax_element(ghost.eta.begin(), ghost.eta.end());
-                ghost.cut = !Operator::same_viscosity(*low, *high);
-                ghosts.push_back(std::move(ghost));
-                continue;
-              }
-            cell->get_dof_indices(indices);
-            for (const auto g : indices)
-              {
-                resolve(g);
-                for (const auto &[free, weight] : resolved_one)
-                  if (owned.is_element(free))
-                    complete[partitioner->global_to_local(free)] = 0;
-              }
-          }
-
-      // The blocks: the usable free DoFs of each cut cell. (Blocks on the
-      // cells wholly in the solid as well were tried: the same count, 30 %
-      // dearer set-up; doc/preconditioners.md.)
-      const unsigned int        n_points = op.viscosity.size(1);
-      std::vector<unsigned int> local;
-      auto add_block = [&](const std::vector<types::global_dof_index> &cell) {
-        local.clear();
-        for (const auto g : cell)
-          {
-            resolve(g);
-            for (const auto &[free, weight] : resolved_one)
-              if (owned.is_element(free))
-                {
-                  const unsigned int i = partitioner->global_to_local(free);
-                  if (complete[i])
-                    local.push_back(i);
-                }
-          }
-        std::sort(local.begin(), local.end());
-        local.erase(std::unique(local.begin(), local.end()), local.end());
-        if (local.empty())
-          return;
-        block_dofs.insert(block_dofs.end(), local.begin(), local.end());
-        block_start.push_back(block_dofs.size());
-      };
-      for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
-        for (unsigned int lane = 0;
-             lane < mf.n_active_entries_per_cell_batch(batch);
-             ++lane)
-          {
-            double low = op.viscosity(batch, 0)[lane], high = low;
-            for (unsigned int q = 1; q < n_points; ++q)
-              {
-                low  = std::min(low, op.viscosity(batch, q)[lane]);
-                high = std::max(high, op.viscosity(batch, q)[lane]);
-              }
-            if (Operator::same_viscosity(low, high))
-              continue;
-            mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
-            add_block(indices);
-          }
-      for (const GhostCell &ghost : ghosts)
-        if (ghost.cut)
-          {
-            ghost.cell->get_dof_indices(indices);
-            add_block(indices);
-          }
+      SetupData data(op, dofs, constraints, point_inverse);
+      find_ghost_cells(data, ghost_viscosity);
+      collect_blocks(data);
       const unsigned int n_blocks = block_start.size() - 1;
-
-      // Which blocks hold each owned DoF (compressed rows).
-      std::vector<unsigned int> holder_start(n_owned + 1, 0);
-      for (const unsigned int i : block_dofs)
-        ++holder_start[i + 1];
-      for (unsigned int i = 0; i < n_owned; ++i)
-        holder_start[i + 1] += holder_start[i];
-      std::vector<unsigned int> holders(block_dofs.size());
-      {
-        std::vector<unsigned int> next(holder_start.begin(),
-                                       holder_start.end() - 1);
-        for (unsigned int b = 0; b < n_blocks; ++b)
-          for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
-            holders[next[block_dofs[k]]++] = b;
-      }
+      find_holders(data);
 
       std::vector<FullMatrix<double>> blocks(n_blocks);
       for (unsigned int b = 0; b < n_blocks; ++b)
@@ -244,199 +117,19 @@ namespace Fidus
 
       // Sum the element matrices of every cell that touches a block.
       op.with_points([&](auto n, const unsigned int quadrature) {
-        constexpr int n_1d = decltype(n)::value;
-        typename Operator::template EvaluatorWith<n_1d> phi(mf, 0, quadrature);
-        // On a Galerkin level a cell of uniform viscosity is exact with the
-        // Gauss points too, at a fifth of the cost in 3D Q2 (most cells
-        // next to a cut cell are such cells).
-        typename Operator::Evaluator gauss(mf, 0, 0);
-        const auto                  &lexicographic =
-          mf.get_shape_info(0, quadrature, 0, 0, 0).lexicographic_numbering;
-        std::vector<types::global_dof_index> cell_dofs(dofs_per_cell);
-        // Per cell DoF: its (owned local index, weight) after resolution.
-        std::vector<std::vector<std::pair<unsigned int, double>>> free(
-          dofs_per_cell);
-        std::vector<FullMatrix<double>> element(
-          VectorizedArray<double>::size(),
-          FullMatrix<double>(dofs_per_cell, dofs_per_cell));
-        std::vector<unsigned char> touches(VectorizedArray<double>::size());
-        // Each lane's resolved DoFs, kept from the test for touching blocks
-        // to the scatter.
-        std::vector<decltype(free)> lane_free(VectorizedArray<double>::size(),
-                                              decltype(free)(dofs_per_cell));
-        std::vector<unsigned int>   cell_blocks;
-        // Per cell DoF, its (position in the block, weight).
-        std::vector<std::vector<std::pair<unsigned int, double>>> in_block(
-          dofs_per_cell);
-        std::vector<int> position(n_owned, -1);
-
-        // The free DoFs of a cell whose element matrix numbers its DoFs as
-        // cell_dofs; whether any is in a block.
-        auto resolve_cell = [&]() {
-          bool any = false;
-          for (unsigned int a = 0; a < dofs_per_cell; ++a)
-            {
-              free[a].clear();
-              resolve(cell_dofs[a]);
-              for (const auto &[g, weight] : resolved_one)
-                if (owned.is_element(g))
-                  {
-                    const unsigned int i = partitioner->global_to_local(g);
-                    free[a].emplace_back(i, weight);
-                    any = any || holder_start[i + 1] > holder_start[i];
-                  }
-            }
-          return any;
-        };
-        auto free_dofs_of = [&](const unsigned int batch,
-                                const unsigned int lane) {
-          mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
-          for (unsigned int a = 0; a < dofs_per_cell; ++a)
-            cell_dofs[a] = indices[lexicographic[a]];
-          return resolve_cell();
-        };
-        // Add the element matrix of the cell last resolved to the blocks
-        // that share its DoFs.
-        auto scatter = [&](const FullMatrix<double> &matrix) {
-          cell_blocks.clear();
-          for (unsigned int a = 0; a < dofs_per_cell; ++a)
-            for (const auto &[i, weight] : free[a])
-              for (unsigned int h = holder_start[i]; h < holder_start[i + 1];
-                   ++h)
-                cell_blocks.push_back(holders[h]);
-          std::sort(cell_blocks.begin(), cell_blocks.end());
-          cell_blocks.erase(std::unique(cell_blocks.begin(), cell_blocks.end()),
-                            cell_blocks.end());
-          for (const unsigned int b : cell_blocks)
-            {
-              for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
-                position[block_dofs[k]] = k - block_start[b];
-              for (unsigned int a = 0; a < dofs_per_cell; ++a)
-                {
-                  in_block[a].clear();
-                  for (const auto &[i, weight] : free[a])
-                    if (position[i] >= 0)
-                      in_block[a].emplace_back(position[i], weight);
-                }
-              FullMatrix<double> &block = blocks[b];
-              for (unsigned int a = 0; a < dofs_per_cell; ++a)
-                for (const auto &[p, wp] : in_block[a])
-                  for (unsigned int c = 0; c < dofs_per_cell; ++c)
-                    for (const auto &[q, wq] : in_block[c])
-                      block(p, q) += wp * wq * matrix(a, c);
-              for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
-                position[block_dofs[k]] = -1;
-            }
-        };
-
-        for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
-          {
-            const unsigned int n_lanes =
-              mf.n_active_entries_per_cell_batch(batch);
-            bool any = false;
-            for (unsigned int lane = 0; lane < n_lanes; ++lane)
-              {
-                touches[lane] = free_dofs_of(batch, lane);
-                lane_free[lane].swap(free);
-                any = any || touches[lane];
-              }
-            if (!any)
-              continue;
-            auto compute = [&](auto &evaluator) {
-              evaluator.reinit(batch);
-              for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                {
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    evaluator.begin_dof_values()[i] =
-                      static_cast<double>(i == j);
-                  op.cell_term(evaluator);
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    for (unsigned int lane = 0; lane < n_lanes; ++lane)
-                      element[lane](i, j) =
-                        evaluator.begin_dof_values()[i][lane];
-                }
-            };
-            if (op.galerkin_level && op.uniform_viscosity[batch])
-              compute(gauss);
-            else
-              compute(phi);
-            for (unsigned int lane = 0; lane < n_lanes; ++lane)
-              {
-                if (!touches[lane])
-                  continue;
-                free.swap(lane_free[lane]);
-                scatter(element[lane]);
-              }
-          }
-
-        // The ghost cells, with FEValues on the same points: 2 eta e(u):e(v).
-        const FEValuesExtractors::Vector     velocity(0);
-        std::vector<SymmetricTensor<2, dim>> strain(dofs_per_cell);
-        for (const GhostCell &ghost : ghosts)
-          {
-            ghost.cell->get_dof_indices(cell_dofs);
-            if (!resolve_cell())
-              continue;
-            ghost_values->reinit(ghost.cell);
-            FullMatrix<double> &matrix = element[0];
-            matrix                     = 0.;
-            for (unsigned int q = 0; q < ghost.eta.size(); ++q)
-              {
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  strain[i] =
-                    (*ghost_values)[velocity].symmetric_gradient(i, q);
-                const double factor = 2. * ghost.eta[q] * ghost_values->JxW(q);
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                  for (unsigned int j = 0; j < dofs_per_cell; ++j)
-                    matrix(i, j) += factor * (strain[i] * strain[j]);
-              }
-            scatter(matrix);
-          }
+        constexpr int  n_1d = decltype(n)::value;
+        ElementScratch scratch(data, quadrature);
+        add_cell_matrices<n_1d>(data, quadrature, scratch, blocks);
+        add_ghost_cell_matrices(data, scratch, blocks);
       });
 
-      // Invert the blocks; the point part leaves their DoFs alone.
-      block_inverse_start.assign(1, 0);
-      for (unsigned int b = 0; b < n_blocks; ++b)
-        {
-          blocks[b].gauss_jordan();
-          // Scaled by 1/sqrt(m_p m_q), m the number of blocks holding a
-          // DoF: still symmetric, and the overlap no longer stretches the
-          // top of the spectrum that Chebyshev must cover (at 3D level 4,
-          // r = 1e4: 47 FGMRES per solve against 54 unscaled).
-          {
-            const unsigned int first = block_start[b];
-            for (unsigned int p = 0; p < blocks[b].m(); ++p)
-              for (unsigned int q = 0; q < blocks[b].n(); ++q)
-                {
-                  const unsigned int ip = block_dofs[first + p],
-                                     iq = block_dofs[first + q];
-                  blocks[b](p, q) /=
-                    std::sqrt(double(holder_start[ip + 1] - holder_start[ip]) *
-                              double(holder_start[iq + 1] - holder_start[iq]));
-                }
-          }
-          // Exactly symmetric, as add_block_solves assumes.
-          for (unsigned int p = 0; p < blocks[b].m(); ++p)
-            for (unsigned int q = 0; q < p; ++q)
-              blocks[b](p, q) = blocks[b](q, p) =
-                0.5 * (blocks[b](p, q) + blocks[b](q, p));
-          for (const double v : blocks[b])
-            AssertThrow(std::isfinite(v),
-                        ExcMessage("A cut-cell block of the multigrid "
-                                   "smoother is singular."));
-          // The upper triangle, row by row: the inverses are the largest
-          // data a smoothing step streams (24 spheres: 100 MB), and
-          // symmetry halves it.
-          for (unsigned int p = 0; p < blocks[b].m(); ++p)
-            for (unsigned int q = p; q < blocks[b].n(); ++q)
-              inverses.push_back(blocks[b](p, q));
-          block_inverse_start.push_back(inverses.size());
-        }
+      invert_blocks(data, blocks);
+      const unsigned int n_owned = data.n_owned;
       for (const unsigned int i : block_dofs)
         point_inverse.local_element(i) = 0.;
       holder_count.resize(n_owned);
       for (unsigned int i = 0; i < n_owned; ++i)
-        holder_count[i] = holder_start[i + 1] - holder_start[i];
+        holder_count[i] = data.holder_start[i + 1] - data.holder_start[i];
     }
 
     /// dst = P^{-1} src.
@@ -540,6 +233,456 @@ namespace Fidus
     }
 
   private:
+    /// A ghost cell, with the viscosity at its points and whether it is cut.
+    struct GhostCell
+    {
+      typename DoFHandler<dim>::active_cell_iterator cell;
+      std::vector<double>                            eta;
+      bool                                           cut;
+    };
+
+    /// What the stages of initialize() share: the level, the resolution of
+    /// a DoF's constraints, which owned rows are complete here, the ghost
+    /// cells and which blocks hold each owned DoF.
+    struct SetupData
+    {
+      SetupData(const Operator                  &op,
+                const DoFHandler<dim>           &dofs,
+                const AffineConstraints<double> &constraints,
+                const VectorType                &point_inverse)
+        : op(op)
+        , dofs(dofs)
+        , constraints(constraints)
+        , mf(*op.get_matrix_free())
+        , partitioner(point_inverse.get_partitioner())
+        , owned(dofs.locally_owned_dofs())
+        , n_owned(point_inverse.locally_owned_size())
+        , dofs_per_cell(dofs.get_fe().n_dofs_per_cell())
+        , complete(n_owned, 1)
+        , indices(dofs_per_cell)
+      {}
+
+      /// Sets resolved_one to the free DoFs and weights of @p g.
+      void
+      resolve(const types::global_dof_index g)
+      {
+        resolved_one.clear();
+        if (constraints.is_constrained(g))
+          {
+            const auto *entries = constraints.get_constraint_entries(g);
+            if (entries != nullptr)
+              resolved_one.assign(entries->begin(), entries->end());
+          }
+        else
+          resolved_one.emplace_back(g, 1.);
+      }
+
+      const Operator                                           &op;
+      const DoFHandler<dim>                                    &dofs;
+      const AffineConstraints<double>                          &constraints;
+      const MatrixFree<dim, double>                            &mf;
+      const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner;
+      const IndexSet                                           &owned;
+      const unsigned int                                        n_owned;
+      const unsigned int                                        dofs_per_cell;
+
+      // A DoF's free DoFs and weights after the constraints are resolved.
+      std::vector<std::pair<types::global_dof_index, double>> resolved_one;
+      // Whether the row of each owned DoF is complete on this rank.
+      std::vector<unsigned char>           complete;
+      std::vector<types::global_dof_index> indices;
+      std::unique_ptr<FEValues<dim>>       ghost_values;
+      std::vector<GhostCell>               ghosts;
+      /// Which blocks hold each owned DoF (compressed rows).
+      std::vector<unsigned int> holder_start, holders;
+    };
+
+    /// The work arrays of the summation of the element matrices into the
+    /// blocks.
+    struct ElementScratch
+    {
+      ElementScratch(const SetupData &data, const unsigned int quadrature)
+        : lexicographic(data.mf.get_shape_info(0, quadrature, 0, 0, 0)
+                          .lexicographic_numbering)
+        , cell_dofs(data.dofs_per_cell)
+        , free(data.dofs_per_cell)
+        , element(VectorizedArray<double>::size(),
+                  FullMatrix<double>(data.dofs_per_cell, data.dofs_per_cell))
+        , touches(VectorizedArray<double>::size())
+        , lane_free(VectorizedArray<double>::size(),
+                    std::vector<std::vector<std::pair<unsigned int, double>>>(
+                      data.dofs_per_cell))
+        , in_block(data.dofs_per_cell)
+        , position(data.n_owned, -1)
+      {}
+
+      const std::vector<unsigned int>     &lexicographic;
+      std::vector<types::global_dof_index> cell_dofs;
+      // Per cell DoF: its (owned local index, weight) after resolution.
+      std::vector<std::vector<std::pair<unsigned int, double>>> free;
+      std::vector<FullMatrix<double>>                           element;
+      std::vector<unsigned char>                                touches;
+      // Each lane's resolved DoFs, kept from the test for touching blocks
+      // to the scatter.
+      std::vector<std::vector<std::vector<std::pair<unsigned int, double>>>>
+                                lane_free;
+      std::vector<unsigned int> cell_blocks;
+      // Per cell DoF, its (position in the block, weight).
+      std::vector<std::vector<std::pair<unsigned int, double>>> in_block;
+      std::vector<int>                                          position;
+    };
+
+    /// Collects the ghost cells with their viscosity (with
+    /// @p ghost_viscosity), or marks the owned rows they touch incomplete
+    /// (without it).
+    void
+    find_ghost_cells(SetupData &data, const GhostViscosity &ghost_viscosity)
+    {
+      const Operator                       &op       = data.op;
+      const DoFHandler<dim>                &dofs     = data.dofs;
+      std::vector<unsigned char>           &complete = data.complete;
+      std::vector<types::global_dof_index> &indices  = data.indices;
+
+      // The ghost cells: with their viscosity, their element matrices
+      // complete the rows here; without it, the owned rows that they touch
+      // are incomplete here.
+      op.with_points([&](auto n, const unsigned int quadrature) {
+        const QGauss<1>        gauss(decltype(n)::value);
+        const QGaussLobatto<1> lobatto(decltype(n)::value);
+        const Quadrature<dim>  points(quadrature == 0 ?
+                                       static_cast<Quadrature<1>>(gauss) :
+                                       static_cast<Quadrature<1>>(lobatto));
+        data.ghost_values =
+          std::make_unique<FEValues<dim>>(dofs.get_fe(),
+                                          points,
+                                          update_gradients | update_JxW_values |
+                                            update_quadrature_points);
+      });
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_ghost())
+          {
+            if (ghost_viscosity)
+              {
+                GhostCell ghost{cell, {}, false};
+                data.ghost_values->reinit(cell);
+                ghost_viscosity(cell, *data.ghost_values, ghost.eta);
+                const auto [low, high] =
+                  std::minmax_element(ghost.eta.begin(), ghost.eta.end());
+                ghost.cut = !Operator::same_viscosity(*low, *high);
+                data.ghosts.push_back(std::move(ghost));
+                continue;
+              }
+            cell->get_dof_indices(indices);
+            for (const auto g : indices)
+              {
+                data.resolve(g);
+                for (const auto &[free, weight] : data.resolved_one)
+                  if (data.owned.is_element(free))
+                    complete[data.partitioner->global_to_local(free)] = 0;
+              }
+          }
+    }
+
+    /// Appends to block_dofs and block_start a block for each cut cell,
+    /// owned or ghost, with its usable free DoFs.
+    void
+    collect_blocks(SetupData &data)
+    {
+      const Operator                       &op      = data.op;
+      const MatrixFree<dim, double>        &mf      = *op.get_matrix_free();
+      std::vector<types::global_dof_index> &indices = data.indices;
+
+      // The blocks: the usable free DoFs of each cut cell. (Blocks on the
+      // cells wholly in the solid as well were tried: the same count, 30 %
+      // dearer set-up; doc/preconditioners.md.)
+      const unsigned int        n_points = op.viscosity.size(1);
+      std::vector<unsigned int> local;
+      auto add_block = [&](const std::vector<types::global_dof_index> &cell) {
+        local.clear();
+        for (const auto g : cell)
+          {
+            data.resolve(g);
+            for (const auto &[free, weight] : data.resolved_one)
+              if (data.owned.is_element(free))
+                {
+                  const unsigned int i =
+                    data.partitioner->global_to_local(free);
+                  if (data.complete[i])
+                    local.push_back(i);
+                }
+          }
+        std::sort(local.begin(), local.end());
+        local.erase(std::unique(local.begin(), local.end()), local.end());
+        if (local.empty())
+          return;
+        block_dofs.insert(block_dofs.end(), local.begin(), local.end());
+        block_start.push_back(block_dofs.size());
+      };
+      for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
+        for (unsigned int lane = 0;
+             lane < mf.n_active_entries_per_cell_batch(batch);
+             ++lane)
+          {
+            double low = op.viscosity(batch, 0)[lane], high = low;
+            for (unsigned int q = 1; q < n_points; ++q)
+              {
+                low  = std::min(low, op.viscosity(batch, q)[lane]);
+                high = std::max(high, op.viscosity(batch, q)[lane]);
+              }
+            if (Operator::same_viscosity(low, high))
+              continue;
+            mf.get_cell_iterator(batch, lane)->get_dof_indices(indices);
+            add_block(indices);
+          }
+      for (const GhostCell &ghost : data.ghosts)
+        if (ghost.cut)
+          {
+            ghost.cell->get_dof_indices(indices);
+            add_block(indices);
+          }
+    }
+
+    /// Sets data.holder_start and data.holders: which blocks hold each
+    /// owned DoF.
+    void
+    find_holders(SetupData &data) const
+    {
+      const unsigned int         n_owned      = data.n_owned;
+      const unsigned int         n_blocks     = block_start.size() - 1;
+      std::vector<unsigned int> &holder_start = data.holder_start;
+      std::vector<unsigned int> &holders      = data.holders;
+
+      // Which blocks hold each owned DoF (compressed rows).
+      holder_start.assign(n_owned + 1, 0);
+      for (const unsigned int i : block_dofs)
+        ++holder_start[i + 1];
+      for (unsigned int i = 0; i < n_owned; ++i)
+        holder_start[i + 1] += holder_start[i];
+      holders.assign(block_dofs.size(), 0);
+      {
+        std::vector<unsigned int> next(holder_start.begin(),
+                                       holder_start.end() - 1);
+        for (unsigned int b = 0; b < n_blocks; ++b)
+          for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
+            holders[next[block_dofs[k]]++] = b;
+      }
+    }
+
+    /// The free DoFs of a cell whose element matrix numbers its DoFs as
+    /// s.cell_dofs, into s.free; whether any is in a block.
+    bool
+    resolve_cell(SetupData &data, ElementScratch &s) const
+    {
+      bool any = false;
+      for (unsigned int a = 0; a < data.dofs_per_cell; ++a)
+        {
+          s.free[a].clear();
+          data.resolve(s.cell_dofs[a]);
+          for (const auto &[g, weight] : data.resolved_one)
+            if (data.owned.is_element(g))
+              {
+                const unsigned int i = data.partitioner->global_to_local(g);
+                s.free[a].emplace_back(i, weight);
+                any = any || data.holder_start[i + 1] > data.holder_start[i];
+              }
+        }
+      return any;
+    }
+
+    /// resolve_cell() for the cell of lane @p lane of batch @p batch.
+    bool
+    free_dofs_of(SetupData         &data,
+                 ElementScratch    &s,
+                 const unsigned int batch,
+                 const unsigned int lane) const
+    {
+      data.mf.get_cell_iterator(batch, lane)->get_dof_indices(data.indices);
+      for (unsigned int a = 0; a < data.dofs_per_cell; ++a)
+        s.cell_dofs[a] = data.indices[s.lexicographic[a]];
+      return resolve_cell(data, s);
+    }
+
+    /// Add the element matrix of the cell last resolved to the blocks that
+    /// share its DoFs.
+    void
+    scatter(const SetupData                 &data,
+            ElementScratch                  &s,
+            const FullMatrix<double>        &matrix,
+            std::vector<FullMatrix<double>> &blocks) const
+    {
+      const unsigned int dofs_per_cell = data.dofs_per_cell;
+      const auto        &holder_start  = data.holder_start;
+      s.cell_blocks.clear();
+      for (unsigned int a = 0; a < dofs_per_cell; ++a)
+        for (const auto &[i, weight] : s.free[a])
+          for (unsigned int h = holder_start[i]; h < holder_start[i + 1]; ++h)
+            s.cell_blocks.push_back(data.holders[h]);
+      std::sort(s.cell_blocks.begin(), s.cell_blocks.end());
+      s.cell_blocks.erase(std::unique(s.cell_blocks.begin(),
+                                      s.cell_blocks.end()),
+                          s.cell_blocks.end());
+      for (const unsigned int b : s.cell_blocks)
+        {
+          for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
+            s.position[block_dofs[k]] = k - block_start[b];
+          for (unsigned int a = 0; a < dofs_per_cell; ++a)
+            {
+              s.in_block[a].clear();
+              for (const auto &[i, weight] : s.free[a])
+                if (s.position[i] >= 0)
+                  s.in_block[a].emplace_back(s.position[i], weight);
+            }
+          FullMatrix<double> &block = blocks[b];
+          for (unsigned int a = 0; a < dofs_per_cell; ++a)
+            for (const auto &[p, wp] : s.in_block[a])
+              for (unsigned int c = 0; c < dofs_per_cell; ++c)
+                for (const auto &[q, wq] : s.in_block[c])
+                  block(p, q) += wp * wq * matrix(a, c);
+          for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
+            s.position[block_dofs[k]] = -1;
+        }
+    }
+
+    /// Adds the element matrices of the locally owned cells that touch a
+    /// block, from the operator's own cell integrand on @p n_1d points.
+    template <int n_1d>
+    void
+    add_cell_matrices(SetupData                       &data,
+                      const unsigned int               quadrature,
+                      ElementScratch                  &s,
+                      std::vector<FullMatrix<double>> &blocks) const
+    {
+      const Operator                &op            = data.op;
+      const MatrixFree<dim, double> &mf            = data.mf;
+      const unsigned int             dofs_per_cell = data.dofs_per_cell;
+
+      typename Operator::template EvaluatorWith<n_1d> phi(mf, 0, quadrature);
+      // On a Galerkin level a cell of uniform viscosity is exact with the
+      // Gauss points too, at a fifth of the cost in 3D Q2 (most cells
+      // next to a cut cell are such cells).
+      typename Operator::Evaluator gauss(mf, 0, 0);
+
+      for (unsigned int batch = 0; batch < mf.n_cell_batches(); ++batch)
+        {
+          const unsigned int n_lanes =
+            mf.n_active_entries_per_cell_batch(batch);
+          bool any = false;
+          for (unsigned int lane = 0; lane < n_lanes; ++lane)
+            {
+              s.touches[lane] = free_dofs_of(data, s, batch, lane);
+              s.lane_free[lane].swap(s.free);
+              any = any || s.touches[lane];
+            }
+          if (!any)
+            continue;
+          auto compute = [&](auto &evaluator) {
+            evaluator.reinit(batch);
+            for (unsigned int j = 0; j < dofs_per_cell; ++j)
+              {
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  evaluator.begin_dof_values()[i] = static_cast<double>(i == j);
+                op.cell_term(evaluator);
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  for (unsigned int lane = 0; lane < n_lanes; ++lane)
+                    s.element[lane](i, j) =
+                      evaluator.begin_dof_values()[i][lane];
+              }
+          };
+          if (op.galerkin_level && op.uniform_viscosity[batch])
+            compute(gauss);
+          else
+            compute(phi);
+          for (unsigned int lane = 0; lane < n_lanes; ++lane)
+            {
+              if (!s.touches[lane])
+                continue;
+              s.free.swap(s.lane_free[lane]);
+              scatter(data, s, s.element[lane], blocks);
+            }
+        }
+    }
+
+    /// Adds the element matrices of the ghost cells that touch a block.
+    void
+    add_ghost_cell_matrices(SetupData                       &data,
+                            ElementScratch                  &s,
+                            std::vector<FullMatrix<double>> &blocks) const
+    {
+      const unsigned int dofs_per_cell = data.dofs_per_cell;
+      FEValues<dim>     &ghost_values  = *data.ghost_values;
+
+      // The ghost cells, with FEValues on the same points: 2 eta e(u):e(v).
+      const FEValuesExtractors::Vector     velocity(0);
+      std::vector<SymmetricTensor<2, dim>> strain(dofs_per_cell);
+      for (const GhostCell &ghost : data.ghosts)
+        {
+          ghost.cell->get_dof_indices(s.cell_dofs);
+          if (!resolve_cell(data, s))
+            continue;
+          ghost_values.reinit(ghost.cell);
+          FullMatrix<double> &matrix = s.element[0];
+          matrix                     = 0.;
+          for (unsigned int q = 0; q < ghost.eta.size(); ++q)
+            {
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                strain[i] = ghost_values[velocity].symmetric_gradient(i, q);
+              const double factor = 2. * ghost.eta[q] * ghost_values.JxW(q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  matrix(i, j) += factor * (strain[i] * strain[j]);
+            }
+          scatter(data, s, matrix, blocks);
+        }
+    }
+
+    /// Inverts the blocks, scales and symmetrises the inverses and stores
+    /// their upper triangles in inverses.
+    void
+    invert_blocks(const SetupData                 &data,
+                  std::vector<FullMatrix<double>> &blocks)
+    {
+      const unsigned int n_blocks     = block_start.size() - 1;
+      const auto        &holder_start = data.holder_start;
+
+      // Invert the blocks; the point part leaves their DoFs alone.
+      block_inverse_start.assign(1, 0);
+      for (unsigned int b = 0; b < n_blocks; ++b)
+        {
+          blocks[b].gauss_jordan();
+          // Scaled by 1/sqrt(m_p m_q), m the number of blocks holding a
+          // DoF: still symmetric, and the overlap no longer stretches the
+          // top of the spectrum that Chebyshev must cover (at 3D level 4,
+          // r = 1e4: 47 FGMRES per solve against 54 unscaled).
+          {
+            const unsigned int first = block_start[b];
+            for (unsigned int p = 0; p < blocks[b].m(); ++p)
+              for (unsigned int q = 0; q < blocks[b].n(); ++q)
+                {
+                  const unsigned int ip = block_dofs[first + p],
+                                     iq = block_dofs[first + q];
+                  blocks[b](p, q) /=
+                    std::sqrt(double(holder_start[ip + 1] - holder_start[ip]) *
+                              double(holder_start[iq + 1] - holder_start[iq]));
+                }
+          }
+          // Exactly symmetric, as add_block_solves assumes.
+          for (unsigned int p = 0; p < blocks[b].m(); ++p)
+            for (unsigned int q = 0; q < p; ++q)
+              blocks[b](p, q) = blocks[b](q, p) =
+                0.5 * (blocks[b](p, q) + blocks[b](q, p));
+          for (const double v : blocks[b])
+            AssertThrow(std::isfinite(v),
+                        ExcMessage("A cut-cell block of the multigrid "
+                                   "smoother is singular."));
+          // The upper triangle, row by row: the inverses are the largest
+          // data a smoothing step streams (24 spheres: 100 MB), and
+          // symmetry halves it.
+          for (unsigned int p = 0; p < blocks[b].m(); ++p)
+            for (unsigned int q = p; q < blocks[b].n(); ++q)
+              inverses.push_back(blocks[b](p, q));
+          block_inverse_start.push_back(inverses.size());
+        }
+    }
     /// D^{-1} on the DoFs of no block, zero on theirs.
     VectorType point_inverse;
     /// The owned local indices of block b: block_dofs[block_start[b]] to
