@@ -124,4 +124,28 @@ namespace Fidus
                        "'Contact/Model = none', which has no contacts; "
                        "allowed: false, or the model 'inelastic' or 'gluey'");
   }
+
+
+
+  Contact::Settings
+  ContactParameters::settings(const unsigned int dim,
+                              const double       smallest_radius) const
+  {
+    Contact::Settings cs;
+    cs.dimension         = dim;
+    cs.model             = model == ContactModel::none ? Contact::Model::none :
+                           model == ContactModel::inelastic ? Contact::Model::inelastic :
+                                                              Contact::Model::gluey;
+    cs.solver            = dual_solver == "projected gradient" ?
+                             Contact::DualSolver::projected_gradient :
+                           dual_solver == "accelerated projected gradient" ?
+                             Contact::DualSolver::accelerated_projected_gradient :
+                             Contact::DualSolver::projected_gauss_seidel;
+    cs.tolerance         = tolerance * smallest_radius;
+    cs.alert_distance    = alert_distance * smallest_radius;
+    cs.overlap_tolerance = 2. * cs.tolerance;
+    cs.friction          = friction_coefficient;
+    cs.contact_distance  = rough_contact ? roughness : 0.;
+    return cs;
+  }
 } // namespace Fidus

@@ -153,4 +153,29 @@ namespace Fidus
     require_gap("Lubrication tangential range", tangential_range);
     require_gap("Lubrication tangential range", wall_tangential_range);
   }
+
+
+
+  Contact::LubricationSettings
+  LubricationParameters::settings(const unsigned int dim,
+                                  const double       h,
+                                  const double       viscosity,
+                                  const double       roughness,
+                                  const double       drag,
+                                  const bool         resolves_gap_flow) const
+  {
+    Contact::LubricationSettings ls;
+    ls.dimension             = dim;
+    ls.viscosity             = viscosity;
+    ls.range                 = range * h;
+    ls.wall_range            = wall_range * h;
+    ls.flow_range            = flow_range * h;
+    ls.tangential_range      = tangential_range * h;
+    ls.tangential_wall_range = wall_tangential_range * h;
+    ls.roughness             = roughness;
+    ls.nothing_resolved      = !resolves_gap_flow;
+    ls.drag                  = drag;
+    ls.tangential            = tangential;
+    return ls;
+  }
 } // namespace Fidus

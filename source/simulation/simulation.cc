@@ -19,6 +19,8 @@ namespace Fidus
 {
   namespace
   {
+    /// The contact library's settings, its tolerances relative to the
+    /// smallest radius.
     Contact::Settings
     contact_settings_of(const Parameters &prm, const unsigned int dim)
     {
@@ -26,25 +28,7 @@ namespace Fidus
       if (!prm.particles.radii.empty())
         a_min = *std::min_element(prm.particles.radii.begin(),
                                   prm.particles.radii.end());
-      Contact::Settings cs;
-      cs.dimension         = dim;
-      cs.model             = prm.contact.model == ContactModel::none ?
-                               Contact::Model::none :
-                             prm.contact.model == ContactModel::inelastic ?
-                               Contact::Model::inelastic :
-                               Contact::Model::gluey;
-      cs.solver            = prm.contact.dual_solver == "projected gradient" ?
-                               Contact::DualSolver::projected_gradient :
-                             prm.contact.dual_solver == "accelerated projected gradient" ?
-                               Contact::DualSolver::accelerated_projected_gradient :
-                               Contact::DualSolver::projected_gauss_seidel;
-      cs.tolerance         = prm.contact.tolerance * a_min;
-      cs.alert_distance    = prm.contact.alert_distance * a_min;
-      cs.overlap_tolerance = 2. * cs.tolerance;
-      cs.friction          = prm.contact.friction_coefficient;
-      cs.contact_distance =
-        prm.contact.rough_contact ? prm.contact.roughness : 0.;
-      return cs;
+      return prm.contact.settings(dim, a_min);
     }
 
 
@@ -81,19 +65,13 @@ namespace Fidus
     {
       if (!prm.lubrication.enabled)
         return nullptr;
-      const double                 h = prm.finest_cell_size();
-      Contact::LubricationSettings ls;
-      ls.dimension             = dim;
-      ls.viscosity             = prm.fluid.viscosity;
-      ls.range                 = prm.lubrication.range * h;
-      ls.wall_range            = prm.lubrication.wall_range * h;
-      ls.flow_range            = prm.lubrication.flow_range * h;
-      ls.tangential_range      = prm.lubrication.tangential_range * h;
-      ls.tangential_wall_range = prm.lubrication.wall_tangential_range * h;
-      ls.roughness             = prm.contact.roughness;
-      ls.nothing_resolved      = !resolves_gap_flow;
-      ls.drag                  = prm.contact.drag_coefficient;
-      ls.tangential            = prm.lubrication.tangential;
+      const Contact::LubricationSettings ls =
+        prm.lubrication.settings(dim,
+                                 prm.finest_cell_size(),
+                                 prm.fluid.viscosity,
+                                 prm.contact.roughness,
+                                 prm.contact.drag_coefficient,
+                                 resolves_gap_flow);
       auto lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
       lubrication->set_walls(box.walls);
       lubrication->set_periodicity(box.periods);

@@ -1,6 +1,7 @@
 #ifndef fidus_contact_contact_parameters_h
 #define fidus_contact_contact_parameters_h
 
+#include <fidus/contact/contact_types.h>
 #include <string>
 
 namespace dealii
@@ -38,6 +39,12 @@ namespace Fidus
     /// none, which has no contacts for them to act at.
     void
     check() const;
+
+    /// The contact library's settings for a scene in @p dim dimensions
+    /// whose smallest radius is @p smallest_radius (the tolerances are
+    /// relative to it).
+    Contact::Settings
+    settings(const unsigned int dim, const double smallest_radius) const;
 
     ContactModel model          = ContactModel::gluey;
     bool         walls          = true;

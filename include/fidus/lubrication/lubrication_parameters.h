@@ -1,6 +1,8 @@
 #ifndef fidus_lubrication_lubrication_parameters_h
 #define fidus_lubrication_lubrication_parameters_h
 
+#include <fidus/lubrication/lubrication_correction.h>
+
 namespace dealii
 {
   class ParameterHandler;
@@ -29,6 +31,19 @@ namespace Fidus
     /// positive.
     void
     check() const;
+
+    /// The lubrication library's settings for a scene in @p dim dimensions
+    /// with the finest cell size @p h (the ranges are in cells), the fluid
+    /// viscosity @p viscosity, the contact's @p roughness and drag
+    /// coefficient @p drag, and a fluid model that resolves part of a
+    /// thin gap's flow or not (@p resolves_gap_flow).
+    Contact::LubricationSettings
+    settings(const unsigned int dim,
+             const double       h,
+             const double       viscosity,
+             const double       roughness,
+             const double       drag,
+             const bool         resolves_gap_flow) const;
 
     /// Fluid/Lubrication correction.
     bool enabled = false;

@@ -15,6 +15,18 @@ namespace Fidus
   FictitiousDomainParameters::declare(ParameterHandler &prm)
   {
     prm.enter_subsection("Fluid");
+    declare_solid_entries(prm);
+    prm.enter_subsection("Linear solver");
+    declare_linear_solver_entries(prm);
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  FictitiousDomainParameters::declare_solid_entries(ParameterHandler &prm)
+  {
     prm.declare_entry("Penalty factor",
                       "1000",
                       Patterns::Double(1.),
@@ -123,9 +135,14 @@ namespace Fidus
       "when a contact model ('Contact/Model' inelastic or gluey) or the "
       "lubrication correction keeps close pairs apart, 'rigid' with "
       "neither, where the rigid doublet is all that does.");
-    prm.leave_subsection();
-    prm.enter_subsection("Fluid");
-    prm.enter_subsection("Linear solver");
+  }
+
+
+
+  void
+  FictitiousDomainParameters::declare_linear_solver_entries(
+    ParameterHandler &prm)
+  {
     prm.declare_entry("Tolerance",
                       "1e-6",
                       Patterns::Double(0., 1.),
@@ -252,8 +269,6 @@ namespace Fidus
       "auto: on, except with GMG in 3D, whose Galerkin levels and "
       "cut-cell blocks keep the particles' motions, where it was measured "
       "to cost 0-17 % of the solve (doc/preconditioners.md).");
-    prm.leave_subsection();
-    prm.leave_subsection();
   }
 
 

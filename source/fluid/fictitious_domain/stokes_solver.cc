@@ -1,4 +1,4 @@
-#include "stokes_solver_preconditioners.h"
+#include "stokes_linear_solvers.h"
 
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
@@ -45,7 +45,6 @@ namespace Fidus
     , fe(FE_Q<dim>(settings.degree), dim, FE_Q<dim>(settings.degree - 1), 1)
     , dof_handler(triangulation)
     , quadrature(settings.degree + 1)
-    , preconditioners(std::make_unique<Preconditioners>())
   {}
 
 
@@ -54,7 +53,7 @@ namespace Fidus
   StokesSolver<dim>::~StokesSolver()
   {
     checkpoint_transfer.reset();
-    preconditioners.reset();
+    linear_solver.reset();
     dof_handler.clear();
   }
 
@@ -118,8 +117,8 @@ namespace Fidus
   {
     periodic_directions = periodic;
     dirichlet_ids       = dirichlet;
-    preconditioners     = std::make_unique<Preconditioners>();
-    coupling_assembled  = false;
+    linear_solver.reset();
+    coupling_assembled = false;
 
     dof_handler.distribute_dofs(fe);
     // Number the DoFs along the forest (z-order) before splitting them by
@@ -143,69 +142,15 @@ namespace Fidus
     relevant_partitioning = {locally_relevant_dofs.get_view(0, n_u),
                              locally_relevant_dofs.get_view(n_u, n_u + n_p)};
 
-    // The multigrid hierarchy first: whether it can be built on this mesh
-    // decides whether the system holds an assembled velocity block.
-    direct.reset();
-    direct_active    = dof_handler.n_dofs() <= settings.direct_max_unknowns;
-    multigrid_active = settings.geometric_multigrid && !direct_active;
-    if (multigrid_active)
-      {
-        typename VelocityMultigrid<dim>::Settings mg;
-        mg.degree          = settings.degree;
-        mg.smoother_degree = settings.mg_smoother_degree;
-        mg.smoother_blocks = settings.mg_smoother_blocks == "cut cells" ?
-                               SmootherBlocks::cut_cells :
-                               SmootherBlocks::none;
-        mg.averaging       = VelocityMultigrid<dim>::parse_averaging(
-          settings.mg_viscosity_averaging);
-        try
-          {
-            preconditioners->multigrid =
-              std::make_unique<VelocityMultigrid<dim>>(triangulation, mg);
-            preconditioners->multigrid->setup(dof_handler,
-                                              periodic_directions,
-                                              dirichlet_ids);
-          }
-        catch (const ExceptionBase &e)
-          {
-            // deal.II 9.4's global-coarsening transfer refuses some
-            // adaptive meshes (a coarsened copy that is finer than the mesh
-            // above it somewhere; seen in 2D at maximum level 9 with a disc
-            // a tenth of its radius from a wall). This mesh is solved with
-            // the AMG instead, and the run says so.
-            preconditioners->multigrid.reset();
-            multigrid_active = false;
-            ++multigrid_fallbacks;
-            if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-              std::cerr << "fidus: warning: the geometric multigrid could not "
-                           "be built on this mesh ("
-                        << triangulation.n_global_active_cells()
-                        << " cells, mesh " << multigrid_fallbacks
-                        << " of this run where that happened); it is solved "
-                           "with the AMG preconditioner instead. deal.II "
-                           "said: "
-                        << e.get_exc_name() << std::endl;
-          }
-      }
+    // The linear solver first: whether the multigrid hierarchy can be
+    // built on this mesh decides whether the system holds an assembled
+    // velocity block.
+    linear_solver = choose_linear_solver();
 
     // The constrained DoF set does not depend on the boundary values, so
     // zero Dirichlet data give the sparsity pattern of every later solve.
     make_constraints(Functions::ZeroFunction<dim>(dim + 1));
-    // The direct solver's pinned pressure: the lowest unconstrained one
-    // (hanging and periodic pressures are constrained), the same on every
-    // rank.
-    pinned_pressure = numbers::invalid_dof_index;
-    if (direct_active)
-      {
-        types::global_dof_index first = numbers::invalid_dof_index;
-        for (const auto i : owned_partitioning[1])
-          if (!constraints.is_constrained(n_u + i))
-            {
-              first = i;
-              break;
-            }
-        pinned_pressure = Utilities::MPI::min(first, mpi_communicator);
-      }
+    linear_solver->prepare_mesh();
     conforming_constraints.clear();
     conforming_constraints.reinit(locally_relevant_dofs);
     add_conforming_constraints(conforming_constraints);
@@ -591,23 +536,41 @@ namespace Fidus
   bool
   StokesSolver<dim>::velocity_block_assembled() const
   {
-    return !(multigrid_active && settings.matrix_free_velocity_block);
+    return !linear_solver || linear_solver->assembles_velocity_block();
   }
 
 
 
   template <int dim>
-  void
-  StokesSolver<dim>::subtract_constraint_load()
+  std::unique_ptr<typename StokesSolver<dim>::LinearSolver>
+  StokesSolver<dim>::choose_linear_solver()
   {
-    // The assembly moves the known values of constrained DoFs (the boundary
-    // velocity) to the right-hand side through the local matrices; without
-    // the velocity-velocity part of those, the same load comes from the
-    // matrix-free operator applied to the field of constrained values.
-    TrilinosWrappers::MPI::BlockVector g(owned_partitioning, mpi_communicator);
-    constraints.distribute(g);
-    preconditioners->multigrid->subtract_constraint_load(base_rhs.block(0),
-                                                         g.block(0));
+    if (dof_handler.n_dofs() <= settings.direct_max_unknowns)
+      return std::make_unique<DirectLinearSolver>(*this);
+    if (settings.geometric_multigrid)
+      try
+        {
+          return std::make_unique<GmgLinearSolver>(*this);
+        }
+      catch (const ExceptionBase &e)
+        {
+          // deal.II 9.4's global-coarsening transfer refuses some adaptive
+          // meshes (a coarsened copy that is finer than the mesh above it
+          // somewhere; seen in 2D at maximum level 9 with a disc a tenth of
+          // its radius from a wall). This mesh is solved with the AMG
+          // instead, and the run says so.
+          ++multigrid_fallbacks;
+          if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+            std::cerr << "fidus: warning: the geometric multigrid could not "
+                         "be built on this mesh ("
+                      << triangulation.n_global_active_cells()
+                      << " cells, mesh " << multigrid_fallbacks
+                      << " of this run where that happened); it is solved "
+                         "with the AMG preconditioner instead. deal.II "
+                         "said: "
+                      << e.get_exc_name() << std::endl;
+        }
+    return std::make_unique<AmgLinearSolver>(*this);
   }
 
 

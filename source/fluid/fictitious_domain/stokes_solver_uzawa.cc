@@ -2,7 +2,7 @@
 // (UzawaLoop, augmented Lagrangian for rigidity), the strain left in the
 // solid, and the FGMRES solve of each iteration; the rest of the class
 // (DoFs, constraints, assembly, errors) is in stokes_solver.cc.
-#include "stokes_solver_preconditioners.h"
+#include "stokes_linear_solvers.h"
 
 #include <cmath>
 #include <deal.II/base/timer.h>
@@ -167,133 +167,7 @@ namespace Fidus
   unsigned int
   StokesSolver<dim>::solve_linear(Statistics &stats, const double tolerance)
   {
-    if (direct)
-      {
-        // Exact to round-off whatever the loop asks (an inexact Uzawa
-        // tolerance saves nothing here): held to the linear tolerance.
-        direct->solve(distributed_solution, rhs, settings.linear_tolerance);
-        constraints.distribute(distributed_solution);
-        solution = distributed_solution;
-        return 0;
-      }
-    const auto &Q = preconditioners->rigid_body_correction;
-    if (multigrid_active)
-      return solve_linear(
-        stats,
-        DeflatedVelocityPreconditioner<VelocityMultigrid<dim>>(
-          *velocity_block,
-          *preconditioners->multigrid,
-          Q),
-        tolerance);
-    return solve_linear(
-      stats,
-      DeflatedVelocityPreconditioner<TrilinosWrappers::PreconditionAMG>(
-        *velocity_block,
-        preconditioners->amg,
-        Q),
-      tolerance);
-  }
-
-
-
-  template <int dim>
-  template <class VelocityPreconditioner>
-  unsigned int
-  StokesSolver<dim>::solve_linear(Statistics                   &stats,
-                                  const VelocityPreconditioner &velocity,
-                                  const double                  tolerance)
-  {
-    const double rhs_norm = rhs.l2_norm();
-    if (rhs_norm == 0.)
-      {
-        distributed_solution = 0;
-        constraints.distribute(distributed_solution);
-        solution = distributed_solution;
-        return 0;
-      }
-    const double target = tolerance * rhs_norm;
-
-    // Every solve starts from zero, not from the last velocity. The last
-    // velocity is rigid on the previous particle positions or for the
-    // previous multiplier, so its residual sits at the interfaces: the
-    // content that the pressure-mass Schur approximation handles worst.
-    // From zero, the residual is the smooth right-hand side. Measured
-    // (doc/performance.md): 2D paper scene to t = 3, level 6: 4576 -> 3079
-    // FGMRES iterations; second Uzawa solve of the 2D inclusion: 270 -> 92.
-    distributed_solution = 0;
-
-    unsigned int iterations = 0;
-    bool         done       = false;
-    SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData data(
-      settings.gmres_restart);
-    if (settings.max_cheap_iterations > 0)
-      {
-        SolverControl control(settings.max_cheap_iterations,
-                              target,
-                              false,
-                              false);
-        const BlockSchurPreconditioner<VelocityPreconditioner> cheap(
-          system_matrix,
-          *velocity_block,
-          preconditioner_matrix.block(1, 1),
-          velocity,
-          preconditioners->jacobi,
-          false);
-        try
-          {
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                    data);
-            solver.solve(StokesOperator(system_matrix, *velocity_block),
-                         distributed_solution,
-                         rhs,
-                         cheap);
-            done = true;
-          }
-        catch (const SolverControl::NoConvergence &)
-          {}
-        iterations += control.last_step();
-      }
-    if (!done)
-      {
-        ++stats.expensive_solves;
-        SolverControl control(settings.max_linear_iterations,
-                              target,
-                              false,
-                              false);
-        const BlockSchurPreconditioner<VelocityPreconditioner> expensive(
-          system_matrix,
-          *velocity_block,
-          preconditioner_matrix.block(1, 1),
-          velocity,
-          preconditioners->jacobi,
-          true);
-        try
-          {
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                    data);
-            solver.solve(StokesOperator(system_matrix, *velocity_block),
-                         distributed_solution,
-                         rhs,
-                         expensive);
-          }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            std::ostringstream s;
-            s << "the Stokes solver (FGMRES) did not converge in "
-              << e.last_step << " iterations: residual " << e.last_residual
-              << " > target " << target << " (Fluid/Linear solver/Tolerance = "
-              << settings.linear_tolerance << ", this solve's tolerance "
-              << tolerance
-              << "); try more 'Maximum iterations' or a smaller 'Penalty "
-                 "factor'";
-            throw RunError(s.str());
-          }
-        iterations += control.last_step();
-        stats.inner_iterations += expensive.inner_iterations;
-      }
-    constraints.distribute(distributed_solution);
-    solution = distributed_solution;
-    return iterations;
+    return linear_solver->solve(stats, tolerance);
   }
 
 
@@ -321,24 +195,7 @@ namespace Fidus
     stats.assemble_seconds = timer.wall_time();
 
     timer.restart();
-    if (direct_active)
-      {
-        // The first solve on a mesh copies the pattern and analyses it;
-        // later ones (setup_dofs() resets it) copy values and factorise.
-        if (direct)
-          direct->refactorise();
-        else
-          direct = std::make_unique<DirectStokesSolver>(system_matrix,
-                                                        owned_partitioning,
-                                                        pinned_pressure,
-                                                        mpi_communicator);
-      }
-    else
-      {
-        setup_preconditioners(solid, fluid_viscosity);
-        if (!velocity_block_assembled())
-          subtract_constraint_load();
-      }
+    linear_solver->setup(solid, fluid_viscosity);
     stats.setup_seconds = timer.wall_time();
 
     timer.restart();

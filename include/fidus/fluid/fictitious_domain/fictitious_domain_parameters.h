@@ -107,6 +107,16 @@ namespace Fidus
     bool rigid_body_correction = true;
 
   private:
+    /// The entries of Fluid: penalty, rigidity, Uzawa loop, solid (the
+    /// subsection entered by declare()).
+    static void
+    declare_solid_entries(dealii::ParameterHandler &prm);
+
+    /// The entries of Fluid/Linear solver (the subsection entered by
+    /// declare()).
+    static void
+    declare_linear_solver_entries(dealii::ParameterHandler &prm);
+
     /// Shared cells and Reuse multiplier as written, until
     /// resolve_shared_cells().
     std::string shared_cells_choice = "rigid";

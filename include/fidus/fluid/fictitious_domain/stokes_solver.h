@@ -304,27 +304,23 @@ namespace Fidus
     /// The solver seen as the problem UzawaLoop iterates on
     /// (stokes_solver_uzawa.cc).
     class Uzawa;
-    /// One FGMRES solve of the current system, from zero, to @p tolerance
-    /// (relative to the right-hand side).
+    /// The linear solvers, one class per choice of Fluid/Linear solver
+    /// (stokes_linear_solvers.h).
+    class LinearSolver;
+    class DirectLinearSolver;
+    class IterativeLinearSolver;
+    class AmgLinearSolver;
+    class GmgLinearSolver;
+    /// The linear solver of a new mesh: direct on meshes of at most
+    /// Settings::direct_max_unknowns unknowns, else FGMRES with the GMG
+    /// (Settings::geometric_multigrid) or the AMG, which also stands in
+    /// where the multigrid hierarchy cannot be built.
+    std::unique_ptr<LinearSolver>
+    choose_linear_solver();
+    /// One solve of the current system, from zero, to @p tolerance
+    /// (relative to the right-hand side), by the linear solver of this mesh.
     unsigned int
     solve_linear(Statistics &stats, double tolerance);
-    /// After assemble_system(): the Jacobi of the pressure mass, the velocity
-    /// V-cycle (AMG, or the new viscosity of the GMG levels) and the
-    /// rigid-body correction (stokes_solver_preconditioners.cc).
-    void
-    setup_preconditioners(const SolidIndicator<dim> &solid,
-                          const Function<dim>       *fluid_viscosity);
-    /// The rigid motions of every particle on the DoFs of its solid, for
-    /// the velocity preconditioner (after assemble_system()).
-    void
-    build_rigid_body_correction(const SolidIndicator<dim> &solid);
-    /// One FGMRES solve with @p velocity as the velocity-block
-    /// preconditioner.
-    template <class VelocityPreconditioner>
-    unsigned int
-    solve_linear(Statistics                   &stats,
-                 const VelocityPreconditioner &velocity,
-                 double                        tolerance);
     /// Whether the solid of @p cell is released
     /// (Settings::release_shared_cells): within half a cell diameter of two
     /// particles (@p candidates: the particles near the cell), or touching a
@@ -350,10 +346,6 @@ namespace Fidus
     /// when the geometric multigrid applies it without a matrix).
     bool
     velocity_block_assembled() const;
-    /// Without an assembled velocity block: base_rhs -= C^T A g, the load
-    /// of the boundary values that the assembly leaves out.
-    void
-    subtract_constraint_load();
 
     MPI_Comm                                   mpi_communicator;
     parallel::distributed::Triangulation<dim> &triangulation;
@@ -400,26 +392,11 @@ namespace Fidus
     TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
     TrilinosWrappers::MPI::BlockVector  solid_mask;
     bool                                multiplier_valid = false;
-    /// Whether the current mesh is solved with the geometric multigrid:
-    /// Settings::geometric_multigrid, unless its hierarchy could not be
-    /// built on this mesh (setup_dofs() then falls back to the AMG).
-    bool multigrid_active = false;
-    /// Meshes on which that fallback happened.
+    /// Meshes on which the geometric multigrid could not be built and the
+    /// AMG stood in.
     unsigned int multigrid_fallbacks = 0;
-
-    class Preconditioners;
-    std::unique_ptr<Preconditioners> preconditioners;
-    /// Whether this mesh is solved directly (Settings::
-    /// direct_max_unknowns), decided by setup_dofs().
-    bool direct_active = false;
-    /// With direct_active: the factorised system of this solve.
-    std::unique_ptr<DirectStokesSolver> direct;
-    /// The pressure unknown (within the pressure block) that the direct
-    /// solver fixes at zero: the pressure is defined up to a constant.
-    types::global_dof_index pinned_pressure = numbers::invalid_dof_index;
-    /// Products with the velocity block (assembled or matrix-free), set
-    /// with the preconditioners.
-    std::unique_ptr<VelocityBlock> velocity_block;
+    /// How this mesh's systems are solved (choose_linear_solver()).
+    std::unique_ptr<LinearSolver> linear_solver;
 
     /// Holds the multiplier between prepare_for_checkpoint() and the save.
     std::unique_ptr<parallel::distributed::
