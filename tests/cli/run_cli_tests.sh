@@ -74,6 +74,8 @@ expect_error "no trapezoidal pass" "value 0 for the entry named Trapezoidal iter
   "$(base; printf 'subsection Time stepping\n  set Trapezoidal iterations = 0\nend\n')"
 expect_error "unknown preconditioner" "Preconditioner" \
   "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set Preconditioner = ILU\n  end\nend\n')"
+expect_error "GMRES restart 0" "value 0 for the entry named GMRES restart does not match.*1...2147483647" \
+  "$(base; printf 'subsection Fluid\n  subsection Linear solver\n    set GMRES restart = 0\n  end\nend\n')"
 expect_error "solid retraction leaves no solid" "Fluid/Solid retraction' has the value 0.8, which leaves particle 0 (radius 0.01) no solid.*allowed: values below" \
   "$(base | sed 's/Radius = 0.05/Radius = 0.01/'; printf 'subsection Fluid\n  set Solid retraction = 0.8\nend\nsubsection Mesh refinement\n  set Maximum level = 6\nend\n')"
 expect_error "external force count" "Particles/External force' has 3 forces for 2 particles; allowed: one force for all particles or one per particle" \

@@ -177,6 +177,15 @@ namespace Fidus
                       "FGMRES iterations with the expensive "
                       "preconditioner before failing, >= 1.");
     prm.declare_entry(
+      "GMRES restart",
+      "200",
+      Patterns::Integer(1),
+      "Iterations FGMRES keeps before it restarts, >= 1. It stores two "
+      "vectors of the size of the system per iteration: with a million "
+      "unknowns, 200 take 3.2 GB per copy of the system (spread over the "
+      "ranks). Fewer save memory and may cost iterations; only solves "
+      "that need more iterations than this restart.");
+    prm.declare_entry(
       "AMG aggregation threshold",
       "0",
       Patterns::Double(0., 1.),
@@ -304,6 +313,7 @@ namespace Fidus
     inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
     max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
     max_linear_iterations     = prm.get_integer("Maximum iterations");
+    gmres_restart             = prm.get_integer("GMRES restart");
     amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
     amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
     amg_smoother_type         = prm.get("AMG smoother type");

@@ -81,9 +81,12 @@ namespace Fidus
     /// factor times the loop's own tolerance (never below
     /// linear_tolerance); the final velocity is then carried on to
     /// linear_tolerance. 0: every solve to linear_tolerance.
-    double       inexact_uzawa_factor      = 0.;
-    unsigned int max_cheap_iterations      = 1000;
-    unsigned int max_linear_iterations     = 1000;
+    double       inexact_uzawa_factor  = 0.;
+    unsigned int max_cheap_iterations  = 1000;
+    unsigned int max_linear_iterations = 1000;
+    /// Krylov vectors FGMRES keeps before it restarts (Fluid/Linear
+    /// solver/GMRES restart).
+    unsigned int gmres_restart             = 200;
     double       amg_aggregation_threshold = 0.;
     unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";

@@ -61,8 +61,6 @@ namespace Fidus
       /// alone has a small rms shear rate that would make the measure
       /// unreachably strict.
       double forced_velocity_scale = 0.;
-      /// Krylov vectors kept by FGMRES before a restart.
-      unsigned int gmres_restart = 200;
       /// Print one line per Uzawa iteration (rank 0).
       bool verbose = false;
     };
