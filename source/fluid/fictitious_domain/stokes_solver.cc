@@ -309,6 +309,56 @@ namespace Fidus
 
 
 
+  /// Scratch of the assembly of one cell: its values, its local matrices
+  /// and right-hand side, and which of its DoFs are velocities.
+  template <int dim>
+  struct StokesSolver<dim>::CellAssembly
+  {
+    CellAssembly(const FESystem<dim> &fe, const QGauss<dim> &quadrature)
+      : fe_values(fe,
+                  quadrature,
+                  update_values | update_gradients | update_quadrature_points |
+                    update_JxW_values)
+      , n_q(quadrature.size())
+      , cell_matrix(fe.n_dofs_per_cell(), fe.n_dofs_per_cell())
+      , cell_prec(fe.n_dofs_per_cell(), fe.n_dofs_per_cell())
+      , cell_rhs(fe.n_dofs_per_cell())
+      , dofs(fe.n_dofs_per_cell())
+      , symgrad(fe.n_dofs_per_cell())
+      , div(fe.n_dofs_per_cell())
+      , phi_p(fe.n_dofs_per_cell())
+      , eta(quadrature.size())
+      , force(dim + 1)
+      , is_velocity(fe.n_dofs_per_cell())
+      , points(quadrature.size())
+    {
+      // The cell's velocity and pressure DoFs, so that each coupling is
+      // visited once (the pairs of a Q2-Q1 cell in 3D are 95 % velocity).
+      for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+        {
+          is_velocity[k] = fe.system_to_component_index(k).first < dim;
+          (is_velocity[k] ? u_dofs : p_dofs).push_back(k);
+        }
+    }
+
+    FEValues<dim>                        fe_values;
+    const unsigned int                   n_q;
+    FullMatrix<double>                   cell_matrix;
+    FullMatrix<double>                   cell_prec;
+    dealii::Vector<double>               cell_rhs;
+    std::vector<types::global_dof_index> dofs;
+    std::vector<SymmetricTensor<2, dim>> symgrad;
+    std::vector<double>                  div;
+    std::vector<double>                  phi_p;
+    std::vector<double>                  eta;
+    dealii::Vector<double>               force;
+    std::vector<bool>                    is_velocity;
+    std::vector<unsigned int>            u_dofs, p_dofs;
+    std::vector<Point<dim>>              points;
+  };
+
+
+
   template <int dim>
   void
   StokesSolver<dim>::assemble_system(const SolidIndicator<dim> &solid,
@@ -328,40 +378,16 @@ namespace Fidus
     base_rhs              = 0;
     solid_mask            = 0;
 
-    FEValues<dim>                    fe_values(fe,
-                            quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
-    const unsigned int               dofs_per_cell = fe.n_dofs_per_cell();
-    const unsigned int               n_q           = quadrature.size();
-    const FEValuesExtractors::Vector velocities(0);
-    const FEValuesExtractors::Scalar pressure(dim);
-
-    FullMatrix<double>     cell_matrix(dofs_per_cell, dofs_per_cell);
-    FullMatrix<double>     cell_prec(dofs_per_cell, dofs_per_cell);
-    dealii::Vector<double> cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> dofs(dofs_per_cell);
-    std::vector<SymmetricTensor<2, dim>> symgrad(dofs_per_cell);
-    std::vector<double>                  div(dofs_per_cell);
-    std::vector<double>                  phi_p(dofs_per_cell);
-    std::vector<double>                  eta(n_q);
-    std::vector<unsigned int>            cands;
-    dealii::Vector<double>               force(dim + 1);
-    std::vector<bool>                    is_velocity(dofs_per_cell);
-    // The cell's velocity and pressure DoFs, so that each coupling is
-    // visited once (the pairs of a Q2-Q1 cell in 3D are 95 % velocity).
-    std::vector<unsigned int> u_dofs, p_dofs;
-    for (unsigned int k = 0; k < dofs_per_cell; ++k)
-      {
-        is_velocity[k] = fe.system_to_component_index(k).first < dim;
-        (is_velocity[k] ? u_dofs : p_dofs).push_back(k);
-      }
+    CellAssembly              c(fe, quadrature);
+    FEValues<dim>            &fe_values     = c.fe_values;
+    const unsigned int        dofs_per_cell = fe.n_dofs_per_cell();
+    const unsigned int        n_q           = c.n_q;
+    std::vector<unsigned int> cands;
 
     shared.assign(triangulation.n_active_cells(), false);
     sliver.assign(triangulation.n_active_cells(), false);
     n_shared_cells = 0;
     solid_entry_of_dof.assign(owned_partitioning[0].n_elements(), -1);
-    std::vector<Point<dim>> points(n_q);
     // The velocity DoFs of a cell that meets the solid (outside shared
     // cells) are held rigid by the multiplier (solid mask), and belong to
     // that particle's rigid motions in the preconditioner's coarse space
@@ -388,13 +414,13 @@ namespace Fidus
           sliver[cell->active_cell_index()] = true;
           return;
         }
-      cell->get_dof_indices(dofs);
+      cell->get_dof_indices(c.dofs);
       for (unsigned int k = 0; k < dofs_per_cell; ++k)
-        if (is_velocity[k] && solid_mask.in_local_range(dofs[k]))
+        if (c.is_velocity[k] && solid_mask.in_local_range(c.dofs[k]))
           {
-            solid_mask(dofs[k]) = 1.;
+            solid_mask(c.dofs[k]) = 1.;
             int &e = solid_entry_of_dof[owned_partitioning[0].index_within_set(
-              dofs[k])];
+              c.dofs[k])];
             if (e < 0)
               e = entry;
           }
@@ -414,11 +440,15 @@ namespace Fidus
           }
 
         fe_values.reinit(cell);
-        cell->get_dof_indices(dofs);
+        cell->get_dof_indices(c.dofs);
         for (unsigned int q = 0; q < n_q; ++q)
-          points[q] = fe_values.quadrature_point(q);
-        const bool meets_solid =
-          viscosity_at(solid, fluid_viscosity, cands, shared_cell, points, eta);
+          c.points[q] = fe_values.quadrature_point(q);
+        const bool meets_solid = viscosity_at(solid,
+                                              fluid_viscosity,
+                                              cands,
+                                              shared_cell,
+                                              c.points,
+                                              c.eta);
         if (meets_solid && shared_cell)
           {
             shared[cell->active_cell_index()] = true;
@@ -430,94 +460,12 @@ namespace Fidus
         // With B kept, the cell's B is needed only for the load of its
         // boundary values.
         bool with_b = !keep_coupling;
-        for (unsigned int i = 0; i < u_dofs.size() && !with_b; ++i)
-          with_b = constraints.is_inhomogeneously_constrained(dofs[u_dofs[i]]);
+        for (unsigned int i = 0; i < c.u_dofs.size() && !with_b; ++i)
+          with_b =
+            constraints.is_inhomogeneously_constrained(c.dofs[c.u_dofs[i]]);
 
-        cell_matrix = 0;
-        cell_prec   = 0;
-        cell_rhs    = 0;
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const double JxW = fe_values.JxW(q);
-            // (with_a implies with_b: the velocity block is assembled with
-            // the rest every step.)
-            if (with_b)
-              for (const unsigned int k : u_dofs)
-                {
-                  if (with_a)
-                    symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
-                  div[k] = fe_values[velocities].divergence(k, q) * JxW;
-                }
-            for (const unsigned int k : p_dofs)
-              phi_p[k] = fe_values[pressure].value(k, q);
-            if (with_a)
-              {
-                const double w = 2. * eta[q] * JxW;
-                for (unsigned int i = 0; i < u_dofs.size(); ++i)
-                  for (unsigned int j = 0; j <= i; ++j)
-                    cell_matrix(u_dofs[i], u_dofs[j]) +=
-                      w * (symgrad[u_dofs[i]] * symgrad[u_dofs[j]]);
-              }
-            if (with_b)
-              for (const unsigned int k : u_dofs)
-                for (const unsigned int l : p_dofs)
-                  {
-                    const double b = div[k] * phi_p[l];
-                    cell_matrix(k, l) -= b;
-                    cell_matrix(l, k) -= b;
-                  }
-            const double w = JxW / eta[q];
-            for (unsigned int i = 0; i < p_dofs.size(); ++i)
-              for (unsigned int j = 0; j <= i; ++j)
-                cell_prec(p_dofs[i], p_dofs[j]) +=
-                  w * phi_p[p_dofs[i]] * phi_p[p_dofs[j]];
-            if (body_force)
-              {
-                body_force->vector_value(fe_values.quadrature_point(q), force);
-                for (const unsigned int k : u_dofs)
-                  {
-                    const unsigned int c =
-                      fe.system_to_component_index(k).first;
-                    cell_rhs(k) +=
-                      force[c] * fe_values[velocities].value(k, q)[c] * JxW;
-                  }
-              }
-          }
-        // The velocity-velocity and pressure-pressure parts were summed in
-        // one triangle (in the order of u_dofs and p_dofs, which is the
-        // cell's order): copy it to the other.
-        for (unsigned int i = 0; i < u_dofs.size(); ++i)
-          for (unsigned int j = 0; j < i; ++j)
-            cell_matrix(u_dofs[j], u_dofs[i]) =
-              cell_matrix(u_dofs[i], u_dofs[j]);
-        for (unsigned int i = 0; i < p_dofs.size(); ++i)
-          for (unsigned int j = 0; j < i; ++j)
-            cell_prec(p_dofs[j], p_dofs[i]) = cell_prec(p_dofs[i], p_dofs[j]);
-
-        if (!keep_coupling)
-          constraints.distribute_local_to_global(cell_matrix,
-                                                 cell_rhs,
-                                                 dofs,
-                                                 system_matrix,
-                                                 base_rhs);
-        else
-          {
-            // What the distribution above adds to the right-hand side: the
-            // local rows times the constrained values (inhomogeneities),
-            // with the sign of a move to the other side; only a cell with
-            // such values (with_b) has any.
-            for (const unsigned int k : u_dofs)
-              if (with_b && constraints.is_inhomogeneously_constrained(dofs[k]))
-                {
-                  const double g = constraints.get_inhomogeneity(dofs[k]);
-                  for (const unsigned int l : p_dofs)
-                    cell_rhs(l) -= cell_matrix(l, k) * g;
-                }
-            constraints.distribute_local_to_global(cell_rhs, dofs, base_rhs);
-          }
-        constraints.distribute_local_to_global(cell_prec,
-                                               dofs,
-                                               preconditioner_matrix);
+        integrate_cell(c, with_a, with_b, body_force);
+        distribute_cell(c, keep_coupling, with_b);
       }
     if (!with_a)
       coupling_assembled = true;
@@ -528,6 +476,117 @@ namespace Fidus
     base_rhs.compress(VectorOperation::add);
     solid_mask.compress(VectorOperation::insert);
     make_pressure_rhs_consistent();
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::integrate_cell(CellAssembly        &c,
+                                    const bool           with_a,
+                                    const bool           with_b,
+                                    const Function<dim> *body_force) const
+  {
+    const FEValuesExtractors::Vector velocities(0);
+    const FEValuesExtractors::Scalar pressure(dim);
+    const FEValues<dim>             &fe_values   = c.fe_values;
+    const std::vector<unsigned int> &u_dofs      = c.u_dofs;
+    const std::vector<unsigned int> &p_dofs      = c.p_dofs;
+    FullMatrix<double>              &cell_matrix = c.cell_matrix;
+    FullMatrix<double>              &cell_prec   = c.cell_prec;
+
+    cell_matrix = 0;
+    cell_prec   = 0;
+    c.cell_rhs  = 0;
+    for (unsigned int q = 0; q < c.n_q; ++q)
+      {
+        const double JxW = fe_values.JxW(q);
+        // (with_a implies with_b: the velocity block is assembled with
+        // the rest every step.)
+        if (with_b)
+          for (const unsigned int k : u_dofs)
+            {
+              if (with_a)
+                c.symgrad[k] = fe_values[velocities].symmetric_gradient(k, q);
+              c.div[k] = fe_values[velocities].divergence(k, q) * JxW;
+            }
+        for (const unsigned int k : p_dofs)
+          c.phi_p[k] = fe_values[pressure].value(k, q);
+        if (with_a)
+          {
+            const double w = 2. * c.eta[q] * JxW;
+            for (unsigned int i = 0; i < u_dofs.size(); ++i)
+              for (unsigned int j = 0; j <= i; ++j)
+                cell_matrix(u_dofs[i], u_dofs[j]) +=
+                  w * (c.symgrad[u_dofs[i]] * c.symgrad[u_dofs[j]]);
+          }
+        if (with_b)
+          for (const unsigned int k : u_dofs)
+            for (const unsigned int l : p_dofs)
+              {
+                const double b = c.div[k] * c.phi_p[l];
+                cell_matrix(k, l) -= b;
+                cell_matrix(l, k) -= b;
+              }
+        const double w = JxW / c.eta[q];
+        for (unsigned int i = 0; i < p_dofs.size(); ++i)
+          for (unsigned int j = 0; j <= i; ++j)
+            cell_prec(p_dofs[i], p_dofs[j]) +=
+              w * c.phi_p[p_dofs[i]] * c.phi_p[p_dofs[j]];
+        if (body_force)
+          {
+            body_force->vector_value(fe_values.quadrature_point(q), c.force);
+            for (const unsigned int k : u_dofs)
+              {
+                const unsigned int comp = fe.system_to_component_index(k).first;
+                c.cell_rhs(k) +=
+                  c.force[comp] * fe_values[velocities].value(k, q)[comp] * JxW;
+              }
+          }
+      }
+    // The velocity-velocity and pressure-pressure parts were summed in
+    // one triangle (in the order of u_dofs and p_dofs, which is the
+    // cell's order): copy it to the other.
+    for (unsigned int i = 0; i < u_dofs.size(); ++i)
+      for (unsigned int j = 0; j < i; ++j)
+        cell_matrix(u_dofs[j], u_dofs[i]) = cell_matrix(u_dofs[i], u_dofs[j]);
+    for (unsigned int i = 0; i < p_dofs.size(); ++i)
+      for (unsigned int j = 0; j < i; ++j)
+        cell_prec(p_dofs[j], p_dofs[i]) = cell_prec(p_dofs[i], p_dofs[j]);
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::distribute_cell(CellAssembly &c,
+                                     const bool    keep_coupling,
+                                     const bool    with_b)
+  {
+    if (!keep_coupling)
+      constraints.distribute_local_to_global(c.cell_matrix,
+                                             c.cell_rhs,
+                                             c.dofs,
+                                             system_matrix,
+                                             base_rhs);
+    else
+      {
+        // What the distribution above adds to the right-hand side: the
+        // local rows times the constrained values (inhomogeneities), with
+        // the sign of a move to the other side; only a cell with such
+        // values (with_b) has any.
+        for (const unsigned int k : c.u_dofs)
+          if (with_b && constraints.is_inhomogeneously_constrained(c.dofs[k]))
+            {
+              const double g = constraints.get_inhomogeneity(c.dofs[k]);
+              for (const unsigned int l : c.p_dofs)
+                c.cell_rhs(l) -= c.cell_matrix(l, k) * g;
+            }
+        constraints.distribute_local_to_global(c.cell_rhs, c.dofs, base_rhs);
+      }
+    constraints.distribute_local_to_global(c.cell_prec,
+                                           c.dofs,
+                                           preconditioner_matrix);
   }
 
 

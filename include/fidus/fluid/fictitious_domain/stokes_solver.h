@@ -344,6 +344,20 @@ namespace Fidus
     /// when the geometric multigrid applies it without a matrix).
     bool
     velocity_block_assembled() const;
+    /// Scratch of one cell's assembly (stokes_solver.cc).
+    struct CellAssembly;
+    /// The local matrices of one cell of assemble_system(): the velocity
+    /// block (@p with_a), the coupling B (@p with_b), the pressure mass
+    /// weighted by 1/eta, the body force.
+    void
+    integrate_cell(CellAssembly        &cell,
+                   bool                 with_a,
+                   bool                 with_b,
+                   const Function<dim> *body_force) const;
+    /// Add one cell's local matrices to the system, or with the coupling
+    /// kept (@p keep_coupling) only the load of its boundary values.
+    void
+    distribute_cell(CellAssembly &cell, bool keep_coupling, bool with_b);
 
     MPI_Comm                                   mpi_communicator;
     parallel::distributed::Triangulation<dim> &triangulation;
