@@ -65,6 +65,16 @@ namespace Fidus::ParameterParsing
 
 
 
+  void
+  require_positive(const double value, const std::string &entry)
+  {
+    if (!(value > 0.))
+      throw InputError("entry '" + entry + "' has the value " +
+                       std::to_string(value) + "; allowed: a value > 0");
+  }
+
+
+
   std::array<double, 3>
   parse_point(const std::string &text,
               const std::string &entry,

@@ -1,7 +1,7 @@
 // The entries of the subsection Fluid that every fluid model shares.
 
 #include <deal.II/base/parameter_handler.h>
-#include <fidus/core/input_error.h>
+#include <fidus/core/parameter_parsing.h>
 #include <fidus/fluid/fluid_parameters.h>
 
 namespace Fidus
@@ -62,8 +62,6 @@ namespace Fidus
   void
   FluidParameters::check() const
   {
-    if (!(viscosity > 0.))
-      throw InputError("entry 'Fluid/Viscosity' has the value " +
-                       std::to_string(viscosity) + "; allowed: a value > 0");
+    ParameterParsing::require_positive(viscosity, "Fluid/Viscosity");
   }
 } // namespace Fidus

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/input_error.h>
+#include <fidus/core/parameter_parsing.h>
 #include <fidus/mesh/refinement_parameters.h>
 
 namespace Fidus
@@ -71,10 +72,8 @@ namespace Fidus
   void
   RefinementParameters::check() const
   {
-    if (!(interface_band > 0.))
-      throw InputError("entry 'Mesh refinement/Interface band' has the value " +
-                       std::to_string(interface_band) +
-                       "; allowed: a value > 0");
+    ParameterParsing::require_positive(interface_band,
+                                       "Mesh refinement/Interface band");
     if (minimum_level > initial_global_refinement ||
         initial_global_refinement > maximum_level)
       throw InputError(

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/input_error.h>
+#include <fidus/core/parameter_parsing.h>
 #include <fidus/time_stepping/time_stepping_parameters.h>
 
 namespace Fidus
@@ -114,13 +115,9 @@ namespace Fidus
   void
   TimeSteppingParameters::check() const
   {
-    const auto require_positive = [](const double v, const std::string &entry) {
-      if (!(v > 0.))
-        throw InputError("entry 'Time stepping/" + entry + "' has the value " +
-                         std::to_string(v) + "; allowed: a value > 0");
-    };
-    require_positive(time_step, "Time step");
-    require_positive(cfl_number, "CFL number");
-    require_positive(maximum_time_step, "Maximum time step");
+    ParameterParsing::require_positive(time_step, "Time stepping/Time step");
+    ParameterParsing::require_positive(cfl_number, "Time stepping/CFL number");
+    ParameterParsing::require_positive(maximum_time_step,
+                                       "Time stepping/Maximum time step");
   }
 } // namespace Fidus

@@ -28,6 +28,11 @@ namespace Fidus
                    const std::string                 &allowed,
                    const std::function<bool(double)> &valid = {});
 
+    /// Throw unless @p value > 0 (and not NaN), naming @p entry (its full
+    /// path, e.g. 'Fluid/Viscosity').
+    void
+    require_positive(const double value, const std::string &entry);
+
     /// A point with exactly @p dim coordinates; the unused ones are zero.
     std::array<double, 3>
     parse_point(const std::string &text,

@@ -370,13 +370,10 @@ namespace Fidus
   void
   FictitiousDomainParameters::check() const
   {
-    const auto require_positive = [](const double v, const std::string &entry) {
-      if (!(v > 0.))
-        throw InputError("entry '" + entry + "' has the value " +
-                         std::to_string(v) + "; allowed: a value > 0");
-    };
-    require_positive(rigidity_tolerance, "Fluid/Rigidity tolerance");
-    require_positive(linear_tolerance, "Fluid/Linear solver/Tolerance");
+    ParameterParsing::require_positive(rigidity_tolerance,
+                                       "Fluid/Rigidity tolerance");
+    ParameterParsing::require_positive(linear_tolerance,
+                                       "Fluid/Linear solver/Tolerance");
     if (!(penalty_factor > 1.))
       throw InputError("entry 'Fluid/Penalty factor' has the value " +
                        std::to_string(penalty_factor) +
