@@ -5,6 +5,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <fidus/fluid/cut_element/cut_mesh.h>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -146,12 +147,16 @@ namespace Fidus
             const double gap = (balls[k].center - balls[l].center).norm() -
                                balls[k].radius - balls[l].radius;
             if (!(gap > 0.))
-              throw std::invalid_argument(
-                "CutStokesInclusion: the gap between particles " +
-                std::to_string(std::min(balls[k].owner, balls[l].owner)) +
-                " and " +
-                std::to_string(std::max(balls[k].owner, balls[l].owner)) +
-                " is " + std::to_string(gap) + "; allowed: > 0");
+              {
+                // Six significant digits, not six decimals: a tiny overlap
+                // must not read as -0.000000.
+                std::ostringstream m;
+                m << "CutStokesInclusion: the gap between particles "
+                  << std::min(balls[k].owner, balls[l].owner) << " and "
+                  << std::max(balls[k].owner, balls[l].owner) << " is " << gap
+                  << "; allowed: > 0";
+                throw std::invalid_argument(m.str());
+              }
           }
   }
 
