@@ -1,6 +1,6 @@
 # The quick subset (ctest -L quick, contrib/test.sh -L quick): the tests a
-# developer runs after every edit: 22 tests, 67 s on 2 cores with
-# everything built, 74 s right after a library edit (measured 2026-11-27). They cover each module at its cheapest: the contact
+# developer runs after every edit: 24 tests, 70 s on 2 cores with
+# everything built (measured 2026-11-27 at 4e44d41). They cover each module at its cheapest: the contact
 # library (KKT conditions, pair search, glue), the time loop through the
 # FluidModel interface with exact answers, the paper's 2D pair through the
 # program with the three contact models, the run state, the Uzawa loop on
