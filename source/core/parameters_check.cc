@@ -5,11 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
-#include <iostream>
 #include <limits>
 #include <numeric>
 #include <sstream>

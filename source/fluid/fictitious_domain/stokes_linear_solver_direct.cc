@@ -21,7 +21,6 @@ namespace Fidus
           break;
         }
     pinned_pressure = Utilities::MPI::min(first, s.mpi_communicator);
-    direct.reset();
   }
 
 
@@ -32,7 +31,7 @@ namespace Fidus
                                                const Function<dim> *)
   {
     // The first solve on a mesh copies the pattern and analyses it; later
-    // ones (prepare_mesh() resets it) copy values and factorise.
+    // ones copy values and factorise (a new mesh gets a new solver).
     StokesSolver<dim> &s = this->solver;
     if (direct)
       direct->refactorise();

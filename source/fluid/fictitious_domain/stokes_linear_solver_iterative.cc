@@ -74,73 +74,64 @@ namespace Fidus
     s.distributed_solution = 0;
 
     unsigned int iterations = 0;
-    bool         done       = false;
     SolverFGMRES<TrilinosWrappers::MPI::BlockVector>::AdditionalData data(
       s.settings.gmres_restart);
-    if (s.settings.max_cheap_iterations > 0)
+    // One FGMRES run from the current iterate, the velocity block solved by
+    // one V-cycle (cheap) or by inner CG (expensive); returns whether it
+    // reached the target, with its last residual in @p residual.
+    const auto run = [&](const unsigned int max_steps,
+                         const bool         expensive,
+                         double            &residual) {
+      SolverControl control(max_steps, target, false, false);
+      const BlockSchurPreconditioner<VelocityPreconditioner> preconditioner(
+        s.system_matrix,
+        *velocity_block,
+        s.preconditioner_matrix.block(1, 1),
+        velocity,
+        jacobi,
+        expensive);
+      bool converged = true;
+      try
+        {
+          SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
+                                                                  data);
+          solver.solve(StokesOperator(s.system_matrix, *velocity_block),
+                       s.distributed_solution,
+                       s.rhs,
+                       preconditioner);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          converged = false;
+        }
+      iterations += control.last_step();
+      if (expensive)
+        stats.inner_iterations += preconditioner.inner_iterations;
+      residual = control.last_value();
+      return converged;
+    };
+
+    double residual = 0.;
+    if (s.settings.max_cheap_iterations > 0 &&
+        run(s.settings.max_cheap_iterations, false, residual))
       {
-        SolverControl control(s.settings.max_cheap_iterations,
-                              target,
-                              false,
-                              false);
-        const BlockSchurPreconditioner<VelocityPreconditioner> cheap(
-          s.system_matrix,
-          *velocity_block,
-          s.preconditioner_matrix.block(1, 1),
-          velocity,
-          jacobi,
-          false);
-        try
-          {
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                    data);
-            solver.solve(StokesOperator(s.system_matrix, *velocity_block),
-                         s.distributed_solution,
-                         s.rhs,
-                         cheap);
-            done = true;
-          }
-        catch (const SolverControl::NoConvergence &)
-          {}
-        iterations += control.last_step();
+        s.constraints.distribute(s.distributed_solution);
+        s.solution = s.distributed_solution;
+        return iterations;
       }
-    if (!done)
+    ++stats.expensive_solves;
+    const unsigned int before = iterations;
+    if (!run(s.settings.max_linear_iterations, true, residual))
       {
-        ++stats.expensive_solves;
-        SolverControl control(s.settings.max_linear_iterations,
-                              target,
-                              false,
-                              false);
-        const BlockSchurPreconditioner<VelocityPreconditioner> expensive(
-          s.system_matrix,
-          *velocity_block,
-          s.preconditioner_matrix.block(1, 1),
-          velocity,
-          jacobi,
-          true);
-        try
-          {
-            SolverFGMRES<TrilinosWrappers::MPI::BlockVector> solver(control,
-                                                                    data);
-            solver.solve(StokesOperator(s.system_matrix, *velocity_block),
-                         s.distributed_solution,
-                         s.rhs,
-                         expensive);
-          }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            std::ostringstream m;
-            m << "the Stokes solver (FGMRES) did not converge in "
-              << e.last_step << " iterations: residual " << e.last_residual
-              << " > target " << target << " (Fluid/Linear solver/Tolerance = "
-              << s.settings.linear_tolerance << ", this solve's tolerance "
-              << tolerance
-              << "); try more 'Maximum iterations' or a smaller 'Penalty "
-                 "factor'";
-            throw RunError(m.str());
-          }
-        iterations += control.last_step();
-        stats.inner_iterations += expensive.inner_iterations;
+        std::ostringstream m;
+        m << "the Stokes solver (FGMRES) did not converge in "
+          << iterations - before << " iterations: residual " << residual
+          << " > target " << target
+          << " (Fluid/Linear solver/Tolerance = " << s.settings.linear_tolerance
+          << ", this solve's tolerance " << tolerance
+          << "); try more 'Maximum iterations' or a smaller 'Penalty "
+             "factor'";
+        throw RunError(m.str());
       }
     s.constraints.distribute(s.distributed_solution);
     s.solution = s.distributed_solution;

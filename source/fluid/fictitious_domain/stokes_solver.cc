@@ -1,7 +1,5 @@
 #include "stokes_linear_solvers.h"
 
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
 #include <cmath>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
@@ -13,19 +11,12 @@
 #include <deal.II/lac/block_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <deque>
 #include <fidus/core/input_error.h>
-#include <fidus/fluid/fictitious_domain/block_schur_preconditioner.h>
-#include <fidus/fluid/fictitious_domain/deflated_velocity_preconditioner.h>
-#include <fidus/fluid/fictitious_domain/rigid_mode_correction.h>
-#include <fidus/fluid/fictitious_domain/stokes_operator.h>
 #include <fidus/fluid/fictitious_domain/stokes_solver.h>
-#include <fidus/fluid/fictitious_domain/velocity_multigrid.h>
 #include <fidus/mesh/canonical_cell_order.h>
 #include <limits>
 #include <sstream>
