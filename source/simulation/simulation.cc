@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deal.II/base/mpi.h>
 #include <fidus/core/input_error.h>
+#include <fidus/core/memory_usage.h>
 #include <fidus/fluid/fluid_model_factory.h>
 #include <fidus/particles/isolated_drag.h>
 #include <fidus/simulation/simulation.h>
@@ -195,7 +196,15 @@ namespace Fidus
     warnings.summary();
     if (prm.output.verbosity != Verbosity::quiet)
       timer->print_summary();
-    return summary();
+    RunSummary s = summary();
+    s.peak_memory_per_rank =
+      Utilities::MPI::max(double(MemoryUsage::peak_bytes()), comm);
+    if (s.peak_memory_per_rank > 0.)
+      pcout << "peak memory per rank: "
+            << MemoryUsage::format(s.peak_memory_per_rank)
+            << " (the largest of " << Utilities::MPI::n_mpi_processes(comm)
+            << ")" << std::endl;
+    return s;
   }
 
 
@@ -216,6 +225,11 @@ namespace Fidus
             std::filesystem::remove_all(entry.path(), ignored);
           }
     state.initialise(prm.particles.positions);
+    fluid->open_field_output(prm.output_directory, nullptr);
+    // The files are opened once the first solve is done: a run stopped
+    // there (a mesh that does not fit in memory, a solve that does not
+    // converge) leaves no empty CSV files behind.
+    record.fluid = solve_at_current_positions();
     particles_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
                                   OutputColumns::particle_columns(),
@@ -227,9 +241,6 @@ namespace Fidus
     particle_output = std::make_unique<ParticleOutput>(
       prm.output_directory,
       root && prm.output.particle_output_interval > 0);
-    fluid->open_field_output(prm.output_directory, nullptr);
-
-    record.fluid = solve_at_current_positions();
     measure_stress(0.);
     write_output(0.);
   }

@@ -35,6 +35,10 @@ namespace Fidus
     double multigrid_galerkin_defect = 0.;
     /// Cells and DoFs of the last solve.
     unsigned long long n_cells = 0, n_dofs = 0;
+    /// The smallest GMRES restart a solve used ('Fluid/Linear
+    /// solver/GMRES restart', or less where its basis did not fit in
+    /// memory); 0 when no solve was iterative.
+    unsigned int smallest_gmres_restart = 0;
     /// Errors of the 'exact rigid inclusion' scene (else 0): L2 and H1 of u
     /// on the fluid part, |omega + g/2| / (g/2) and |U| / (g a).
     double u_l2_error = 0., u_h1_error = 0., omega_error = 0.,
@@ -44,6 +48,9 @@ namespace Fidus
     /// Wall seconds of the whole run (earlier parts of a resumed run
     /// included).
     double wall_seconds = 0.;
+    /// The largest resident memory of any rank during the run, in bytes
+    /// (0 where the operating system does not report it).
+    double peak_memory_per_rank = 0.;
     /// The signal that stopped the run before its End time (0: none).
     int stop_signal = 0;
     /// Stress of the last step: the statistics.csv columns, the

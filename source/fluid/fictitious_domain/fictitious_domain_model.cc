@@ -233,6 +233,23 @@ namespace Fidus
     stats.shared_cells               = s.shared_cells;
     stats.shared_residual            = s.shared_residual;
     stats.converged                  = s.uzawa_converged;
+    if (s.gmres_restart > 0)
+      smallest_restart = smallest_restart == 0 ?
+                           s.gmres_restart :
+                           std::min(smallest_restart, s.gmres_restart);
+    if (s.gmres_restart > 0 &&
+        s.gmres_restart < prm.fictitious_domain.gmres_restart)
+      warnings.warn("GMRES restart lowered",
+                    "'Fluid/Linear solver/GMRES restart' = " +
+                      std::to_string(prm.fictitious_domain.gmres_restart) +
+                      " would not fit in memory beside this mesh's system (" +
+                      std::to_string(stats.n_dofs) +
+                      " unknowns): FGMRES restarted every " +
+                      std::to_string(s.gmres_restart) +
+                      " iterations instead ('Fluid/Linear solver/Memory "
+                      "per rank')",
+                    label.step,
+                    s.gmres_restart);
     if (s.uzawa_converged)
       return stats;
     std::ostringstream m;
@@ -415,6 +432,7 @@ namespace Fidus
     s.n_cells                   = tria->n_global_active_cells();
     s.n_dofs                    = solver->n_dofs();
     s.multigrid_galerkin_defect = solver->multigrid_galerkin_defect();
+    s.smallest_gmres_restart    = smallest_restart;
     if (exact_reported)
       {
         s.u_l2_error        = exact_errors[0];

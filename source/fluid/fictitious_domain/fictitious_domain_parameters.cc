@@ -186,6 +186,22 @@ namespace Fidus
       "ranks). Fewer save memory and may cost iterations; only solves "
       "that need more iterations than this restart.");
     prm.declare_entry(
+      "Memory per rank",
+      "auto",
+      Patterns::Anything(),
+      "Memory, in GB, that each rank may use for the whole run, > 0; auto: "
+      "the ranks of a machine share nine tenths of what it has available "
+      "(or of what a control group, as in a batch job, leaves). On each new "
+      "mesh, before its system is built, the system, its preconditioner "
+      "and the smallest FGMRES basis (a restart of 10) are estimated from "
+      "the unknowns (about 2 KB per unknown with the matrix-free GMG, "
+      "12.5 KB with an assembled velocity block, as measured in "
+      "doc/cookbooks/cluster.md): a mesh that would not fit stops the run with "
+      "a message, instead of the operating system killing it. Once the "
+      "system is built, a 'GMRES restart' whose basis would not fit is "
+      "lowered for that mesh to what does, with a warning. Not checked "
+      "with the direct solver.");
+    prm.declare_entry(
       "AMG aggregation threshold",
       "0",
       Patterns::Double(0., 1.),
@@ -309,11 +325,19 @@ namespace Fidus
     solid_smoothing          = prm.get_double("Solid smoothing");
 
     prm.enter_subsection("Linear solver");
-    linear_tolerance          = prm.get_double("Tolerance");
-    inexact_uzawa_factor      = prm.get_double("Inexact Uzawa factor");
-    max_cheap_iterations      = prm.get_integer("Maximum cheap iterations");
-    max_linear_iterations     = prm.get_integer("Maximum iterations");
-    gmres_restart             = prm.get_integer("GMRES restart");
+    linear_tolerance      = prm.get_double("Tolerance");
+    inexact_uzawa_factor  = prm.get_double("Inexact Uzawa factor");
+    max_cheap_iterations  = prm.get_integer("Maximum cheap iterations");
+    max_linear_iterations = prm.get_integer("Maximum iterations");
+    gmres_restart         = prm.get_integer("GMRES restart");
+    memory_per_rank =
+      1e9 *
+      ParameterParsing::number_or_auto(prm.get("Memory per rank"),
+                                       "Fluid/Linear solver/Memory "
+                                       "per rank",
+                                       0.,
+                                       "auto or a number of GB > 0",
+                                       [](const double v) { return v > 0.; });
     amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
     amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
     amg_smoother_type         = prm.get("AMG smoother type");

@@ -171,6 +171,14 @@ namespace Fidus
         }
     }
 
+    /// The restart of this mesh's FGMRES: Settings::gmres_restart, or less
+    /// where its basis would not fit beside the system in the memory
+    /// budget (stokes_solver_memory.cc).
+    void
+    fit_restart();
+
+    /// The restart fit_restart() chose.
+    unsigned int                         restart = 0;
     TrilinosWrappers::PreconditionJacobi jacobi;
     /// The particles' rigid motions (Settings::rigid_body_correction).
     RigidModeCorrection rigid_body_correction;

@@ -36,6 +36,7 @@ namespace Fidus
     , fe(FE_Q<dim>(settings.degree), dim, FE_Q<dim>(settings.degree - 1), 1)
     , dof_handler(triangulation)
     , quadrature(settings.degree + 1)
+    , memory_budget(settings.memory_per_rank, mpi_communicator)
   {}
 
 
@@ -136,6 +137,8 @@ namespace Fidus
     // The linear solver first: whether the multigrid hierarchy can be
     // built on this mesh decides whether the system holds an assembled
     // velocity block.
+    if (dof_handler.n_dofs() > settings.direct_max_unknowns)
+      check_memory_for_mesh(owned.n_elements());
     linear_solver = choose_linear_solver();
 
     // The constrained DoF set does not depend on the boundary values, so

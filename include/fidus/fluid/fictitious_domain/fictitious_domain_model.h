@@ -128,7 +128,9 @@ namespace Fidus
     std::vector<Vec3> X_at_remesh;
     bool              mesh_ready = false;
     /// The exact scene's errors, once measured.
-    bool                  exact_reported = false;
+    bool exact_reported = false;
+    /// The smallest GMRES restart a solve used (0: none was iterative).
+    unsigned int          smallest_restart = 0;
     std::array<double, 5> exact_errors{};
   };
 } // namespace Fidus

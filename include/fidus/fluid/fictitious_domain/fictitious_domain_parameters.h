@@ -86,7 +86,10 @@ namespace Fidus
     unsigned int max_linear_iterations = 1000;
     /// Krylov vectors FGMRES keeps before it restarts (Fluid/Linear
     /// solver/GMRES restart).
-    unsigned int gmres_restart             = 200;
+    unsigned int gmres_restart = 200;
+    /// Memory each rank may use, in bytes (Fluid/Linear solver/Memory per
+    /// rank); 0: auto, the machine's available memory (MemoryBudget).
+    double       memory_per_rank           = 0.;
     double       amg_aggregation_threshold = 0.;
     unsigned int amg_smoother_sweeps       = 4;
     std::string  amg_smoother_type         = "Chebyshev";

@@ -11,6 +11,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <fidus/core/memory_budget.h>
 #include <fidus/fluid/fictitious_domain/direct_stokes_solver.h>
 #include <fidus/fluid/fictitious_domain/fictitious_domain_parameters.h>
 #include <fidus/fluid/fictitious_domain/rigid_motion.h>
@@ -96,6 +97,10 @@ namespace Fidus
       /// Part of solve_seconds spent in the Uzawa loop's passes over the
       /// solid (multiplier load, rigidity residual, rigid motions).
       double solid_pass_seconds = 0.;
+      /// The GMRES restart the solves used (Settings::gmres_restart, or
+      /// less where its basis would not fit in memory); 0 with the direct
+      /// solver.
+      unsigned int gmres_restart = 0;
     };
 
     /// Error norms against an exact solution.
@@ -315,6 +320,12 @@ namespace Fidus
     /// where the multigrid hierarchy cannot be built.
     std::unique_ptr<LinearSolver>
     choose_linear_solver();
+    /// Before this mesh's system is built: stop the run (RunError) if the
+    /// estimate of what the iterative solvers need for @p n_owned owned
+    /// unknowns exceeds the memory budget of some rank
+    /// (stokes_solver_memory.cc).
+    void
+    check_memory_for_mesh(types::global_dof_index n_owned) const;
     /// One solve of the current system, from zero, to @p tolerance
     /// (relative to the right-hand side), by the linear solver of this mesh.
     unsigned int
@@ -409,6 +420,8 @@ namespace Fidus
     unsigned int multigrid_fallbacks = 0;
     /// How this mesh's systems are solved (choose_linear_solver()).
     std::unique_ptr<LinearSolver> linear_solver;
+    /// What each rank may still allocate (Settings::memory_per_rank).
+    MemoryBudget memory_budget;
 
     /// Holds the multiplier between prepare_for_checkpoint() and the save.
     std::unique_ptr<parallel::distributed::

@@ -1,0 +1,43 @@
+#ifndef fidus_core_memory_budget_h
+#define fidus_core_memory_budget_h
+
+#include <mpi.h>
+#include <string>
+
+namespace Fidus
+{
+  /**
+   * How much more memory a rank may allocate, so that a run that would not
+   * fit says so instead of being killed by the operating system.
+   *
+   * With a limit per rank (the entry 'Fluid/Linear solver/Memory per
+   * rank'), a rank may grow to that limit. Without one (auto), the ranks of
+   * one machine share what the machine still has available (MemAvailable,
+   * or what is left under a control group's limit when that is lower, as
+   * in a batch job), less a tenth kept for the rest of the time step. Where
+   * the operating system reports neither, the budget is unlimited.
+   */
+  class MemoryBudget
+  {
+  public:
+    /// @p limit_per_rank in bytes, 0 for auto. Collective on @p comm (it
+    /// counts the ranks that share each machine).
+    MemoryBudget(double limit_per_rank, MPI_Comm comm);
+
+    /// Bytes this rank may still allocate now, >= 0; infinite when
+    /// unknown.
+    double
+    free_bytes() const;
+
+    /// Where the budget comes from, for messages: "the entry ..." or "the
+    /// X GB this machine has available, shared by its N ranks".
+    std::string
+    source() const;
+
+  private:
+    const double limit_per_rank;
+    unsigned int ranks_on_machine = 1;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,75 @@
+#include <algorithm>
+#include <fidus/core/memory_budget.h>
+#include <fidus/core/memory_usage.h>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace Fidus
+{
+  namespace
+  {
+    /// What a control group (cgroup v2) still lets this process's group
+    /// allocate, in bytes; infinite without a limit.
+    double
+    control_group_room()
+    {
+      std::ifstream max("/sys/fs/cgroup/memory.max"),
+        current("/sys/fs/cgroup/memory.current");
+      std::string limit;
+      double      used = 0.;
+      if (!(max >> limit) || limit == "max" || !(current >> used))
+        return std::numeric_limits<double>::infinity();
+      std::istringstream value(limit);
+      double             bytes = 0.;
+      value >> bytes;
+      return std::max(0., bytes - used);
+    }
+  } // namespace
+
+
+
+  MemoryBudget::MemoryBudget(const double limit_per_rank, MPI_Comm comm)
+    : limit_per_rank(limit_per_rank)
+  {
+    MPI_Comm machine;
+    MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
+    int size = 1;
+    MPI_Comm_size(machine, &size);
+    ranks_on_machine = size;
+    MPI_Comm_free(&machine);
+  }
+
+
+
+  double
+  MemoryBudget::free_bytes() const
+  {
+    if (limit_per_rank > 0.)
+      return std::max(0.,
+                      limit_per_rank - double(MemoryUsage::current_bytes()));
+    const double available = double(MemoryUsage::available_bytes());
+    if (available == 0.)
+      return std::numeric_limits<double>::infinity();
+    // A tenth stays for what the step allocates besides the linear
+    // system (the stress, the output, the mesh transfer).
+    return 0.9 * std::min(available, control_group_room()) / ranks_on_machine;
+  }
+
+
+
+  std::string
+  MemoryBudget::source() const
+  {
+    if (limit_per_rank > 0.)
+      return "'Fluid/Linear solver/Memory per rank' = " +
+             MemoryUsage::format(limit_per_rank);
+    std::ostringstream s;
+    s << "nine tenths of the "
+      << MemoryUsage::format(std::min(double(MemoryUsage::available_bytes()),
+                                      control_group_room()))
+      << " this machine has available, shared by its " << ranks_on_machine
+      << (ranks_on_machine == 1 ? " rank" : " ranks");
+    return s.str();
+  }
+} // namespace Fidus
