@@ -42,8 +42,12 @@ namespace Fidus
         << rigidity_residual << std::defaultfloat;
     if (shared > 0)
       s << "  shared " << shared;
-    s << "  contacts " << active << "/" << glued << "  ETA "
-      << format_duration(eta);
+    s << "  contacts " << active << "/" << glued;
+    // The number a rheology run is for, so that a user sees it settle.
+    if (std::isfinite(relative_viscosity))
+      s << "  eta_r " << std::fixed << std::setprecision(3)
+        << relative_viscosity << std::defaultfloat;
+    s << "  ETA " << format_duration(eta);
     return s.str();
   }
 } // namespace Fidus

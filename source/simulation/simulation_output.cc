@@ -254,20 +254,21 @@ namespace Fidus
     last_progress_wall   = now;
     const Statistics &fs = record.fluid;
     ProgressLine      line;
-    line.step              = s.step;
-    line.time              = s.time;
-    line.dt                = dt;
-    line.gap               = std::isfinite(gap) ? gap : 0.;
-    line.cells             = fs.n_cells;
-    line.uzawa             = fs.uzawa_iterations;
-    line.fgmres            = fs.linear_iterations;
-    line.rigidity_residual = fs.rigidity_residual;
-    line.shared            = fs.shared_cells;
-    line.active            = record.projection.n_active;
-    line.glued             = record.projection.n_glued;
-    line.eta               = s.time > 0 ? elapsed_wall_seconds() / s.time *
+    line.step               = s.step;
+    line.time               = s.time;
+    line.dt                 = dt;
+    line.gap                = std::isfinite(gap) ? gap : 0.;
+    line.cells              = fs.n_cells;
+    line.uzawa              = fs.uzawa_iterations;
+    line.fgmres             = fs.linear_iterations;
+    line.rigidity_residual  = fs.rigidity_residual;
+    line.shared             = fs.shared_cells;
+    line.active             = record.projection.n_active;
+    line.glued              = record.projection.n_glued;
+    line.relative_viscosity = record.stress.relative_viscosity;
+    line.eta                = s.time > 0 ? elapsed_wall_seconds() / s.time *
                               (prm.time_stepping.end_time - s.time) :
-                                          0.;
+                                           0.;
     pcout << line.text() << std::endl;
   }
 

@@ -192,10 +192,18 @@ done
 # A good run writes used_parameters.prm and both CSV files with headers
 # (free-draining particles: no mesh, so that it takes no time).
 { base; printf 'subsection Fluid\n  set Model = undisturbed shear\nend\n'; } > run.prm
-"$fidus" run.prm > /dev/null 2>&1
+"$fidus" run.prm > run_stdout.txt 2>&1
 if [ -f out/used_parameters.prm ] && head -1 out/particles.csv | grep -q "^step,time,id,x,y,z,ux,uy,uz,omega_x,omega_y,omega_z,radius,stresslet_xx,stresslet_xy,stresslet_xz,stresslet_yy,stresslet_yz,stresslet_zz,contact_stresslet_xx,contact_stresslet_xy,contact_stresslet_xz,contact_stresslet_yy,contact_stresslet_yz,contact_stresslet_zz,lubrication_stresslet_xx,lubrication_stresslet_xy,lubrication_stresslet_xz,lubrication_stresslet_yy,lubrication_stresslet_yz,lubrication_stresslet_zz,moved_ux,moved_uy,moved_uz,moved_omega_x,moved_omega_y,moved_omega_z,orientation_w,orientation_x,orientation_y,orientation_z$" \
    && head -1 out/statistics.csv | grep -q "^step,time,dt,cells,dofs,uzawa_iterations,linear_iterations,rigidity_residual,min_gap,active_contacts,glued_contacts,wall_seconds,.*,shear_stress,relative_viscosity,normal_stress_difference_1,normal_stress_difference_2,particle_pressure,contact_relative_viscosity,.*,lubrication_relative_viscosity,lubrication_particle_pressure,lubrication_pairs,rigid_velocity_change,particle_rigidity_residual,sliding_contacts$"; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: output files of a good run"; fi
+
+# The progress line of a sheared box gives the step's relative viscosity,
+# the relative_viscosity of statistics.csv to its three decimals.
+column=$(head -1 out/statistics.csv | tr ',' '\n' | grep -n -x relative_viscosity | cut -d: -f1)
+expected=$(tail -1 out/statistics.csv | cut -d, -f"$column" | xargs printf '%.3f')
+shown=$(grep -o 'eta_r [-0-9.]*' run_stdout.txt | tail -1 | cut -d' ' -f2)
+if [ -n "$shown" ] && [ "$shown" = "$expected" ]; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: eta_r on the progress line ('$shown', statistics.csv: '$expected')"; fi
 
 # A particle carried out through an outflow face stops the run with a
 # diagnostic (exit status 2), after the rows of the steps before.

@@ -1,6 +1,7 @@
 #ifndef fidus_simulation_progress_line_h
 #define fidus_simulation_progress_line_h
 
+#include <limits>
 #include <string>
 
 namespace Fidus
@@ -9,8 +10,9 @@ namespace Fidus
    * One progress line on screen: step, time, Δt, smallest gap, and what
    * the fluid model reports (cells and FGMRES iterations where it has a
    * mesh, Uzawa iterations and the rigidity residual where it has a
-   * rigidity multiplier, released cells when there are any), then the
-   * active/glued contacts and the estimated time to finish.
+   * rigidity multiplier, released cells when there are any), the
+   * active/glued contacts, the relative viscosity in a sheared box, and
+   * the estimated time to finish.
    */
   struct ProgressLine
   {
@@ -24,6 +26,9 @@ namespace Fidus
     unsigned int active = 0, glued = 0;
     /// Estimated wall seconds to the End time.
     double eta = 0.;
+    /// The suspension's relative viscosity at this step (statistics.csv:
+    /// relative_viscosity); not shown when NaN (a box without shear).
+    double relative_viscosity = std::numeric_limits<double>::quiet_NaN();
 
     /// The formatted line (no newline).
     std::string
