@@ -25,6 +25,15 @@ namespace Fidus
       value >> bytes;
       return std::max(0., bytes - used);
     }
+
+    /// What the machine can still give: MemAvailable, or less under a
+    /// control group's limit; 0 when unknown.
+    double
+    machine_room()
+    {
+      return std::min(double(MemoryUsage::available_bytes()),
+                      control_group_room());
+    }
   } // namespace
 
 
@@ -48,12 +57,12 @@ namespace Fidus
     if (limit_per_rank > 0.)
       return std::max(0.,
                       limit_per_rank - double(MemoryUsage::current_bytes()));
-    const double available = double(MemoryUsage::available_bytes());
-    if (available == 0.)
+    const double room = machine_room();
+    if (room == 0.)
       return std::numeric_limits<double>::infinity();
     // A tenth stays for what the step allocates besides the linear
     // system (the stress, the output, the mesh transfer).
-    return 0.9 * std::min(available, control_group_room()) / ranks_on_machine;
+    return 0.9 * room / ranks_on_machine;
   }
 
 
@@ -65,9 +74,7 @@ namespace Fidus
       return "'Fluid/Linear solver/Memory per rank' = " +
              MemoryUsage::format(limit_per_rank);
     std::ostringstream s;
-    s << "nine tenths of the "
-      << MemoryUsage::format(std::min(double(MemoryUsage::available_bytes()),
-                                      control_group_room()))
+    s << "nine tenths of the " << MemoryUsage::format(machine_room())
       << " this machine has available, shared by its " << ranks_on_machine
       << (ranks_on_machine == 1 ? " rank" : " ranks");
     return s.str();

@@ -17,7 +17,8 @@ namespace Fidus
     prm.enter_subsection("Fluid");
     declare_solid_entries(prm);
     prm.enter_subsection("Linear solver");
-    declare_linear_solver_entries(prm);
+    declare_fgmres_entries(prm);
+    declare_preconditioner_entries(prm);
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -140,8 +141,7 @@ namespace Fidus
 
 
   void
-  FictitiousDomainParameters::declare_linear_solver_entries(
-    ParameterHandler &prm)
+  FictitiousDomainParameters::declare_fgmres_entries(ParameterHandler &prm)
   {
     prm.declare_entry("Tolerance",
                       "1e-6",
@@ -201,6 +201,14 @@ namespace Fidus
       "system is built, a 'GMRES restart' whose basis would not fit is "
       "lowered for that mesh to what does, with a warning. Not checked "
       "with the direct solver.");
+  }
+
+
+
+  void
+  FictitiousDomainParameters::declare_preconditioner_entries(
+    ParameterHandler &prm)
+  {
     prm.declare_entry(
       "AMG aggregation threshold",
       "0",

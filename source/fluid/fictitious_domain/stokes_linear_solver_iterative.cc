@@ -37,7 +37,10 @@ namespace Fidus
       velocity_block = matrix_free_velocity_block();
     build_rigid_body_correction(solid);
     report_setup();
-    fit_restart();
+    // Once per mesh (this object is new on each), when its system and
+    // preconditioners first hold their memory.
+    if (restart == 0)
+      fit_restart();
     if (s.settings.verbose &&
         Utilities::MPI::this_mpi_process(s.mpi_communicator) == 0)
       std::cout << "    rigid-body correction: "

@@ -19,12 +19,15 @@ namespace Fidus
     /// fast (a 2D pair: 104 iterations with 200, 170 with 10).
     constexpr unsigned int smallest_restart = 10;
 
+    /// FGMRES's own work vectors besides the basis.
+    constexpr double work_vectors = 3.;
+
     /// Vectors of the system FGMRES holds with restart @p r: the basis and
-    /// the preconditioned basis, and the solver's own work vectors.
+    /// the preconditioned basis, and its work vectors.
     double
     basis_vectors(const unsigned int r)
     {
-      return 2. * r + 3.;
+      return 2. * r + work_vectors;
     }
   } // namespace
 
@@ -79,11 +82,13 @@ namespace Fidus
       8. * double(s.owned_partitioning[0].n_elements() +
                   s.owned_partitioning[1].n_elements());
     const double free = s.memory_budget.free_bytes();
-    // The largest restart whose basis fits in what is left.
-    const double fits = std::isfinite(free) ?
-                          std::floor((free / vector_bytes - 3.) / 2.) :
-                          double(s.settings.gmres_restart);
-    restart           = static_cast<unsigned int>(Utilities::MPI::min(
+    // The largest restart whose basis fits in what is left (basis_vectors()
+    // solved for r).
+    const double fits =
+      std::isfinite(free) ?
+        std::floor((free / vector_bytes - work_vectors) / 2.) :
+        double(s.settings.gmres_restart);
+    restart = static_cast<unsigned int>(Utilities::MPI::min(
       std::max(0., std::min(fits, double(s.settings.gmres_restart))),
       s.mpi_communicator));
     if (restart >= std::min(s.settings.gmres_restart, smallest_restart))

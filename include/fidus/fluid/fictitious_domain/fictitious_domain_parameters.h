@@ -118,10 +118,16 @@ namespace Fidus
     static void
     declare_solid_entries(dealii::ParameterHandler &prm);
 
-    /// The entries of Fluid/Linear solver (the subsection entered by
-    /// declare()).
+    /// The entries of Fluid/Linear solver on FGMRES itself: its
+    /// tolerances, iterations, restart and memory budget (the subsection
+    /// entered by declare()).
     static void
-    declare_linear_solver_entries(dealii::ParameterHandler &prm);
+    declare_fgmres_entries(dealii::ParameterHandler &prm);
+
+    /// The entries of Fluid/Linear solver on the choice of method and the
+    /// preconditioners: AMG, GMG, the rigid-body correction.
+    static void
+    declare_preconditioner_entries(dealii::ParameterHandler &prm);
 
     /// Shared cells and Reuse multiplier as written, until
     /// resolve_shared_cells().
