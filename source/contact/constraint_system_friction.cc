@@ -1,3 +1,5 @@
+#include "coulomb_kernels.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fidus/contact/constraint_system.h>
@@ -20,107 +22,7 @@
 
 namespace Fidus::Contact
 {
-  namespace
-  {
-    /// One contact's impulse.
-    struct Impulse
-    {
-      double n = 0.;
-      Vec3   t = {{0., 0., 0.}};
-    };
-
-    /**
-     * The relative velocity at the contact point, v_b - v_a, split into its
-     * normal constraint value c = (D - offset)/dt + v.e and its tangential
-     * part v_t (in-plane in 2D, where omega has a z component only).
-     */
-    inline void
-    contact_velocity(const std::vector<Vec3> &u,
-                     const std::vector<Vec3> &w,
-                     const std::uint32_t      a,
-                     const std::uint32_t      b,
-                     const Vec3              &e,
-                     const double             lever_a,
-                     const double             lever_b,
-                     const Vec3              &surface_a,
-                     const double             rhs,
-                     double                  &c,
-                     Vec3                    &v_t)
-    {
-      // Surface of a at +lever_a e, surface of b at -lever_b e.
-      const Vec3 wa = cross(w[a], e), wb = cross(w[b], e);
-      Vec3       v;
-      for (unsigned d = 0; d < 3; ++d)
-        v[d] =
-          u[b][d] - lever_b * wb[d] - u[a][d] - lever_a * wa[d] - surface_a[d];
-      const double vn = v[0] * e[0] + v[1] * e[1] + v[2] * e[2];
-      c               = rhs + vn;
-      for (unsigned d = 0; d < 3; ++d)
-        v_t[d] = v[d] - vn * e[d];
-    }
-
-    /**
-     * Exact Coulomb law for one contact with the others frozen: the free
-     * velocities q are what the contact would have without its own
-     * impulse; glued rows take any normal impulse, and only a compressive
-     * one (lambda_n > 0) carries friction.
-     */
-    inline Impulse
-    local_solution(const double   c,
-                   const Vec3    &v_t,
-                   const Impulse &old,
-                   const double   w_n,
-                   const double   w_t,
-                   const bool     glued,
-                   const double   mu)
-    {
-      Impulse      r;
-      const double q_n = c - w_n * old.n;
-      r.n              = -q_n / w_n;
-      if (!glued && r.n < 0.)
-        r.n = 0.;
-      Vec3 q_t;
-      for (unsigned d = 0; d < 3; ++d)
-        q_t[d] = v_t[d] - w_t * old.t[d];
-      const double radius = mu * std::max(r.n, 0.);
-      const double slip   = norm(q_t);
-      // Stick when the impulse that stops the slip lies in the cone.
-      const double scale = (slip <= w_t * radius) ? 1. / w_t : radius / slip;
-      for (unsigned d = 0; d < 3; ++d)
-        r.t[d] = -scale * q_t[d];
-      return r;
-    }
-
-    /// Add the impulse change (dn e + dt) on the second body, its opposite
-    /// on the first, to the velocities and angular velocities.
-    inline void
-    scatter(std::vector<Vec3>         &u,
-            std::vector<Vec3>         &w,
-            const std::uint32_t        a,
-            const std::uint32_t        b,
-            const Vec3                &e,
-            const double               lever_a,
-            const double               lever_b,
-            const double               dn,
-            const Vec3                &dt,
-            const std::vector<double> &inv_w,
-            const std::vector<double> &inv_j)
-    {
-      for (unsigned d = 0; d < 3; ++d)
-        {
-          const double f = dn * e[d] + dt[d];
-          u[a][d] -= inv_w[a] * f;
-          u[b][d] += inv_w[b] * f;
-        }
-      // Torque on b: (-lever_b e) x dt; on a: (lever_a e) x (-dt).
-      const Vec3 ext = cross(e, dt);
-      for (unsigned d = 0; d < 3; ++d)
-        {
-          w[a][d] -= lever_a * inv_j[a] * ext[d];
-          w[b][d] -= lever_b * inv_j[b] * ext[d];
-        }
-    }
-  } // namespace
+  using namespace Coulomb;
 
 
 
@@ -161,6 +63,27 @@ namespace Fidus::Contact
 
 
 
+  bool
+  ConstraintSystem::stays_open(const std::size_t        k,
+                               const double             rhs,
+                               const std::vector<Vec3> &u) const
+  {
+    // Most rows of a packing are candidates that stay open. Their exact
+    // local solution is zero when they carry no impulse (a row without a
+    // normal impulse has no tangential one) and their normal velocity
+    // keeps them open, and the normal velocity needs neither the rotations
+    // (they move a contact point tangentially) nor the tangential part.
+    const Vec3 &t = lambda_t_[k];
+    if (glued_[k] || lambda_[k] != 0. || t[0] != 0. || t[1] != 0. || t[2] != 0.)
+      return false;
+    const Vec3 &e = e_[k], &ua = u[a_[k]], &ub = u[b_[k]], &s = surface_a_[k];
+    return rhs + (ub[0] - ua[0] - s[0]) * e[0] + (ub[1] - ua[1] - s[1]) * e[1] +
+             (ub[2] - ua[2] - s[2]) * e[2] >=
+           0.;
+  }
+
+
+
   double
   ConstraintSystem::frictional_residual(const double               mu,
                                         const std::vector<Vec3>   &u,
@@ -176,6 +99,8 @@ namespace Fidus::Contact
         const double        w_n = inv_w[a] + inv_w[b];
         const double        w_t = w_n + lever_a_[k] * lever_a_[k] * inv_j[a] +
                            lever_b_[k] * lever_b_[k] * inv_j[b];
+        if (stays_open(k, (gap_[k] - offset_[k]) / dt, u))
+          continue;
         const Impulse old{lambda_[k], lambda_t_[k]};
         Impulse       next;
         local_coulomb(k,
@@ -193,6 +118,57 @@ namespace Fidus::Contact
         r = std::max({r, w_n * std::abs(next.n - old.n), w_t * norm(change)});
       }
     return r * dt;
+  }
+
+
+
+  double
+  ConstraintSystem::frictional_sweep(const std::vector<std::uint32_t> *rows,
+                                     const bool                        forward,
+                                     const double                      mu,
+                                     const std::vector<double>        &w_t,
+                                     const std::vector<double>        &inv_w,
+                                     const std::vector<double>        &inv_j,
+                                     std::vector<Vec3>                &u,
+                                     std::vector<Vec3>                &w)
+  {
+    const Vec3        zero{{0., 0., 0.}};
+    const std::size_t count  = rows ? rows->size() : size();
+    double            change = 0.;
+    for (std::size_t i = 0; i < count; ++i)
+      {
+        const std::size_t j = forward ? i : count - 1 - i;
+        const std::size_t k = rows ? (*rows)[j] : j;
+        if (stays_open(k, rhs_[k], u))
+          continue;
+        const std::uint32_t a = a_[k], b = b_[k];
+        const Impulse       old{lambda_[k], lambda_t_[k]};
+        Impulse             next;
+        local_coulomb(k, mu, diag_[k], w_t[k], rhs_[k], u, w, next.n, next.t);
+        Vec3 dt_change;
+        for (unsigned d = 0; d < 3; ++d)
+          dt_change[d] = next.t[d] - old.t[d];
+        const double dn_change = next.n - old.n;
+        change                 = std::max(
+          {change, diag_[k] * std::abs(dn_change), w_t[k] * norm(dt_change)});
+        if (dn_change != 0. || dt_change != zero)
+          {
+            lambda_[k]   = next.n;
+            lambda_t_[k] = next.t;
+            scatter(u,
+                    w,
+                    a,
+                    b,
+                    e_[k],
+                    lever_a_[k],
+                    lever_b_[k],
+                    dn_change,
+                    dt_change,
+                    inv_w,
+                    inv_j);
+          }
+      }
+    return change;
   }
 
 
@@ -247,6 +223,63 @@ namespace Fidus::Contact
     apply_all();
     result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
 
+    std::vector<std::uint32_t> active;
+
+    // When the Newton step is rejected (the stick and slip states it froze
+    // are wrong for some contacts), the normal impulses take the
+    // frictionless subspace step instead, with the tangential impulses
+    // frozen: the normal problem is then the frictionless one for the
+    // predicted velocities plus the tangential impulses' share (a normal
+    // impulse does not turn a sphere, nor does a rotation move a contact
+    // point normally), and the step decreases its dual objective. Without
+    // it the sweeps can stall in dense 3D packings with more contacts than
+    // particles (contact/friction).
+    auto normal_step = [&]() {
+      std::vector<Vec3> shifted = u_star;
+      std::vector<Vec3> unused(w.size(), zero);
+      for (std::size_t k = 0; k < m; ++k)
+        scatter(shifted,
+                unused,
+                a_[k],
+                b_[k],
+                e_[k],
+                0.,
+                0.,
+                0.,
+                lambda_t_[k],
+                inv_w,
+                inv_j);
+      subspace_step(shifted, inv_w, dt, tolerance, u);
+      // Back into the cones of the new normal impulses (a row that the
+      // step opened keeps no tangential impulse).
+      for (std::size_t k = 0; k < m; ++k)
+        {
+          const double radius = mu * std::max(lambda_[k], 0.);
+          const double length = norm(lambda_t_[k]);
+          if (length > radius)
+            {
+              Vec3 change;
+              for (unsigned d = 0; d < 3; ++d)
+                change[d] = (radius / length - 1.) * lambda_t_[k][d];
+              scatter(u,
+                      w,
+                      a_[k],
+                      b_[k],
+                      e_[k],
+                      lever_a_[k],
+                      lever_b_[k],
+                      0.,
+                      change,
+                      inv_w,
+                      inv_j);
+              for (unsigned d = 0; d < 3; ++d)
+                lambda_t_[k][d] =
+                  radius > 0. ? lambda_t_[k][d] + change[d] : 0.;
+            }
+        }
+      result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
+    };
+
     while (result.residual > tolerance && result.iterations < max_iterations)
       {
         // Sweeps alternate direction, as in the frictionless Gauss-Seidel,
@@ -255,78 +288,55 @@ namespace Fidus::Contact
         // The largest local change of the sweep, in the residual's units:
         // while it is above the tolerance, it stands for the residual,
         // whose evaluation costs most of a sweep.
-        double change = 0.;
-        for (std::size_t i = 0; i < m; ++i)
-          {
-            const std::size_t   k = forward ? i : m - 1 - i;
-            const std::uint32_t a = a_[k], b = b_[k];
-            const Impulse       old{lambda_[k], lambda_t_[k]};
-            Impulse             next;
-            local_coulomb(k,
-                          mu,
-                          diag_[k],
-                          w_t[k],
-                          rhs_[k],
-                          u,
-                          w,
-                          next.n,
-                          next.t);
-            Vec3 dt_change;
-            for (unsigned d = 0; d < 3; ++d)
-              dt_change[d] = next.t[d] - old.t[d];
-            const double dn_change = next.n - old.n;
-            change                 = std::max({change,
-                                               diag_[k] * std::abs(dn_change),
-                                               w_t[k] * norm(dt_change)});
-            if (dn_change != 0. || dt_change != zero)
-              {
-                lambda_[k]   = next.n;
-                lambda_t_[k] = next.t;
-                scatter(u,
-                        w,
-                        a,
-                        b,
-                        e_[k],
-                        lever_a_[k],
-                        lever_b_[k],
-                        dn_change,
-                        dt_change,
-                        inv_w,
-                        inv_j);
-              }
-          }
+        const double change =
+          frictional_sweep(nullptr, forward, mu, w_t, inv_w, inv_j, u, w);
+        // Most rows of a dense packing are candidates that stay open; the
+        // slow error is in the rows that carry an impulse. Sweeping those
+        // alone until their own change is small costs a fraction of a full
+        // sweep; the next full sweep finds the rows that open or close.
+        active.clear();
+        for (std::size_t k = 0; k < m; ++k)
+          if (glued_[k] || lambda_[k] != 0.)
+            active.push_back(k);
+        if (change * dt > tolerance && 4 * active.size() < m)
+          for (unsigned int j = 0; j < active_sweeps; ++j)
+            if (frictional_sweep(&active,
+                                 j % 2 == 0,
+                                 mu,
+                                 w_t,
+                                 inv_w,
+                                 inv_j,
+                                 u,
+                                 w) *
+                  dt <=
+                tolerance)
+              break;
         ++result.iterations;
         const bool subspace_due =
           subspace && result.iterations % sweeps_per_subspace_step == 0;
         result.residual = change * dt;
         if (result.residual <= tolerance || subspace_due)
           result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
+        // The sweeps converge linearly, slowly where sliding and sticking
+        // contacts hold the same particles and over the long-range
+        // compression of a jammed packing; the Newton step on the contacts
+        // with an impulse removes both errors
+        // (constraint_system_friction_subspace.cc).
         if (subspace_due && result.residual > tolerance)
           {
-            // The sweeps converge like Gauss-Seidel, in O(L^2) sweeps for
-            // the long-range compression of a jammed packing. That error is
-            // in the normal impulses, and with the tangential ones frozen
-            // the normal problem is the frictionless one for the predicted
-            // velocities plus the tangential impulses' share (a normal
-            // impulse does not turn a sphere, nor does a rotation move a
-            // contact point normally): the frictionless subspace step
-            // applies to it unchanged, and decreases its dual objective.
-            std::vector<Vec3> shifted = u_star;
-            std::vector<Vec3> unused(w.size(), zero);
-            for (std::size_t k = 0; k < m; ++k)
-              scatter(shifted,
-                      unused,
-                      a_[k],
-                      b_[k],
-                      e_[k],
-                      0.,
-                      0.,
-                      0.,
-                      lambda_t_[k],
-                      inv_w,
-                      inv_j);
-            subspace_step(shifted, inv_w, dt, tolerance, u);
-            result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
+            const double before = result.residual;
+            result.residual     = frictional_subspace_step(mu,
+                                                       u_star,
+                                                       w_star,
+                                                       inv_w,
+                                                       inv_j,
+                                                       dt,
+                                                       tolerance,
+                                                       result.residual,
+                                                       u,
+                                                       w);
+            if (result.residual >= before)
+              normal_step();
           }
       }
     apply_all();

@@ -301,6 +301,46 @@ namespace Fidus::Contact
                   double                     tolerance,
                   std::vector<Vec3>         &u);
 
+    /**
+     * One Gauss-Seidel sweep of the frictional problem over the rows
+     * listed in @p rows (all rows when null), in order or backwards: each
+     * contact takes its exact local Coulomb solution with the others
+     * frozen, and @p u, @p w follow. Returns the largest local change,
+     * max(W_n |d lambda_n|, W_t |d lambda_t|); @p w_t holds the W_t.
+     */
+    double
+    frictional_sweep(const std::vector<std::uint32_t> *rows,
+                     bool                              forward,
+                     double                            mu,
+                     const std::vector<double>        &w_t,
+                     const std::vector<double>        &inv_w,
+                     const std::vector<double>        &inv_j,
+                     std::vector<Vec3>                &u,
+                     std::vector<Vec3>                &w);
+
+    /// Whether row @p k carries no impulse and its exact local solution,
+    /// with normal right-hand side @p rhs, leaves it so (velocities @p u).
+    bool
+    stays_open(std::size_t k, double rhs, const std::vector<Vec3> &u) const;
+
+    /**
+     * The frictional subspace step: conjugate gradients on the normal
+     * impulses of the contacts that carry one and the tangential impulses
+     * of those that stick, projected on the cones and kept if the residual
+     * falls below @p residual_before. Returns the residual after the step.
+     */
+    double
+    frictional_subspace_step(double                     mu,
+                             const std::vector<Vec3>   &u_star,
+                             const std::vector<Vec3>   &w_star,
+                             const std::vector<double> &inv_w,
+                             const std::vector<double> &inv_j,
+                             double                     dt,
+                             double                     tolerance,
+                             double                     residual_before,
+                             std::vector<Vec3>         &u,
+                             std::vector<Vec3>         &w);
+
     /// Dual objective 1/2 lambda^T A lambda + b^T lambda, from u.
     double
     dual_objective(const std::vector<Vec3>   &u_star,
@@ -309,6 +349,13 @@ namespace Fidus::Contact
 
     /// Gauss-Seidel sweeps between two subspace steps.
     static constexpr unsigned int sweeps_per_subspace_step = 3;
+    /// Sweeps over the rows with an impulse after each full frictional sweep.
+    static constexpr unsigned int active_sweeps = 8;
+    /// Frictional Newton step: linear residual over nonlinear residual.
+    static constexpr double newton_forcing = 1e-2;
+    /// Frictional Newton step: the full step, then halved, at most this
+    /// many times in all.
+    static constexpr unsigned int newton_attempts = 3;
     /// Bound on the conjugate-gradient iterations of one subspace step.
     static constexpr unsigned int max_cg_iterations = 30;
 
