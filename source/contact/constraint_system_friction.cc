@@ -95,10 +95,8 @@ namespace Fidus::Contact
     double r = 0.;
     for (std::size_t k = 0; k < size(); ++k)
       {
-        const std::uint32_t a = a_[k], b = b_[k];
-        const double        w_n = inv_w[a] + inv_w[b];
-        const double        w_t = w_n + lever_a_[k] * lever_a_[k] * inv_j[a] +
-                           lever_b_[k] * lever_b_[k] * inv_j[b];
+        const double w_n = inv_w[a_[k]] + inv_w[b_[k]];
+        const double w_t = tangential_weight(k, inv_w, inv_j);
         if (stays_open(k, (gap_[k] - offset_[k]) / dt, u))
           continue;
         const Impulse old{lambda_[k], lambda_t_[k]};
@@ -141,9 +139,8 @@ namespace Fidus::Contact
         const std::size_t k = rows ? (*rows)[j] : j;
         if (stays_open(k, rhs_[k], u))
           continue;
-        const std::uint32_t a = a_[k], b = b_[k];
-        const Impulse       old{lambda_[k], lambda_t_[k]};
-        Impulse             next;
+        const Impulse old{lambda_[k], lambda_t_[k]};
+        Impulse       next;
         local_coulomb(k, mu, diag_[k], w_t[k], rhs_[k], u, w, next.n, next.t);
         Vec3 dt_change;
         for (unsigned d = 0; d < 3; ++d)
@@ -155,20 +152,90 @@ namespace Fidus::Contact
           {
             lambda_[k]   = next.n;
             lambda_t_[k] = next.t;
-            scatter(u,
-                    w,
-                    a,
-                    b,
-                    e_[k],
-                    lever_a_[k],
-                    lever_b_[k],
-                    dn_change,
-                    dt_change,
-                    inv_w,
-                    inv_j);
+            add_impulse(k, dn_change, dt_change, inv_w, inv_j, u, w);
           }
       }
     return change;
+  }
+
+
+
+  // When the Newton step is rejected (the stick and slip states it froze
+  // are wrong for some contacts), the normal impulses take the
+  // frictionless subspace step instead, with the tangential impulses
+  // frozen: the normal problem is then the frictionless one for the
+  // predicted velocities plus the tangential impulses' share (a normal
+  // impulse does not turn a sphere, nor does a rotation move a contact
+  // point normally), and the step decreases its dual objective. Without
+  // it the sweeps can stall in dense 3D packings with more contacts than
+  // particles (contact/friction).
+  double
+  ConstraintSystem::frictionless_fallback_step(const double             mu,
+                                               const std::vector<Vec3> &u_star,
+                                               const std::vector<double> &inv_w,
+                                               const std::vector<double> &inv_j,
+                                               const double               dt,
+                                               const double       tolerance,
+                                               std::vector<Vec3> &u,
+                                               std::vector<Vec3> &w)
+  {
+    const Vec3        zero{{0., 0., 0.}};
+    std::vector<Vec3> shifted = u_star;
+    std::vector<Vec3> unused(w.size(), zero);
+    for (std::size_t k = 0; k < size(); ++k)
+      scatter(shifted,
+              unused,
+              a_[k],
+              b_[k],
+              e_[k],
+              0.,
+              0.,
+              0.,
+              lambda_t_[k],
+              inv_w,
+              inv_j);
+    subspace_step(shifted, inv_w, dt, tolerance, u);
+    // Back into the cones of the new normal impulses (a row that the step
+    // opened keeps no tangential impulse).
+    for (std::size_t k = 0; k < size(); ++k)
+      {
+        const double radius = mu * std::max(lambda_[k], 0.);
+        const double length = norm(lambda_t_[k]);
+        if (length > radius)
+          {
+            Vec3 change;
+            for (unsigned d = 0; d < 3; ++d)
+              change[d] = (radius / length - 1.) * lambda_t_[k][d];
+            add_impulse(k, 0., change, inv_w, inv_j, u, w);
+            for (unsigned d = 0; d < 3; ++d)
+              lambda_t_[k][d] = radius > 0. ? lambda_t_[k][d] + change[d] : 0.;
+          }
+      }
+    return frictional_residual(mu, u, w, inv_w, inv_j, dt);
+  }
+
+
+
+  void
+  ConstraintSystem::add_impulse(const std::size_t          k,
+                                const double               dn,
+                                const Vec3                &dt,
+                                const std::vector<double> &inv_w,
+                                const std::vector<double> &inv_j,
+                                std::vector<Vec3>         &u,
+                                std::vector<Vec3>         &w) const
+  {
+    scatter(u,
+            w,
+            a_[k],
+            b_[k],
+            e_[k],
+            lever_a_[k],
+            lever_b_[k],
+            dn,
+            dt,
+            inv_w,
+            inv_j);
   }
 
 
@@ -194,29 +261,17 @@ namespace Fidus::Contact
       {
         rhs_[k]  = (gap_[k] - offset_[k]) / dt;
         diag_[k] = inv_w[a_[k]] + inv_w[b_[k]];
-        w_t[k]   = diag_[k] + lever_a_[k] * lever_a_[k] * inv_j[a_[k]] +
-                 lever_b_[k] * lever_b_[k] * inv_j[b_[k]];
+        w_t[k]   = tangential_weight(k, inv_w, inv_j);
       }
 
     // The velocities of the stored multipliers; recomputed from them at
     // the end (as in solve()) so that what is returned satisfies
     // u = u* + W^-1 G^T lambda to round-off.
-    const Vec3 zero{{0., 0., 0.}};
-    auto       apply_all = [&]() {
+    auto apply_all = [&]() {
       u = u_star;
       w = w_star;
       for (std::size_t k = 0; k < m; ++k)
-        scatter(u,
-                w,
-                a_[k],
-                b_[k],
-                e_[k],
-                lever_a_[k],
-                lever_b_[k],
-                lambda_[k],
-                lambda_t_[k],
-                inv_w,
-                inv_j);
+        add_impulse(k, lambda_[k], lambda_t_[k], inv_w, inv_j, u, w);
     };
 
     Result result;
@@ -224,61 +279,6 @@ namespace Fidus::Contact
     result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
 
     std::vector<std::uint32_t> active;
-
-    // When the Newton step is rejected (the stick and slip states it froze
-    // are wrong for some contacts), the normal impulses take the
-    // frictionless subspace step instead, with the tangential impulses
-    // frozen: the normal problem is then the frictionless one for the
-    // predicted velocities plus the tangential impulses' share (a normal
-    // impulse does not turn a sphere, nor does a rotation move a contact
-    // point normally), and the step decreases its dual objective. Without
-    // it the sweeps can stall in dense 3D packings with more contacts than
-    // particles (contact/friction).
-    auto normal_step = [&]() {
-      std::vector<Vec3> shifted = u_star;
-      std::vector<Vec3> unused(w.size(), zero);
-      for (std::size_t k = 0; k < m; ++k)
-        scatter(shifted,
-                unused,
-                a_[k],
-                b_[k],
-                e_[k],
-                0.,
-                0.,
-                0.,
-                lambda_t_[k],
-                inv_w,
-                inv_j);
-      subspace_step(shifted, inv_w, dt, tolerance, u);
-      // Back into the cones of the new normal impulses (a row that the
-      // step opened keeps no tangential impulse).
-      for (std::size_t k = 0; k < m; ++k)
-        {
-          const double radius = mu * std::max(lambda_[k], 0.);
-          const double length = norm(lambda_t_[k]);
-          if (length > radius)
-            {
-              Vec3 change;
-              for (unsigned d = 0; d < 3; ++d)
-                change[d] = (radius / length - 1.) * lambda_t_[k][d];
-              scatter(u,
-                      w,
-                      a_[k],
-                      b_[k],
-                      e_[k],
-                      lever_a_[k],
-                      lever_b_[k],
-                      0.,
-                      change,
-                      inv_w,
-                      inv_j);
-              for (unsigned d = 0; d < 3; ++d)
-                lambda_t_[k][d] =
-                  radius > 0. ? lambda_t_[k][d] + change[d] : 0.;
-            }
-        }
-      result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
-    };
 
     while (result.residual > tolerance && result.iterations < max_iterations)
       {
@@ -336,7 +336,14 @@ namespace Fidus::Contact
                                                        u,
                                                        w);
             if (result.residual >= before)
-              normal_step();
+              result.residual = frictionless_fallback_step(mu,
+                                                           u_star,
+                                                           inv_w,
+                                                           inv_j,
+                                                           dt,
+                                                           tolerance,
+                                                           u,
+                                                           w);
           }
       }
     apply_all();

@@ -39,25 +39,6 @@ namespace Fidus::Contact
 
   namespace
   {
-    /// What a contact contributes to the Newton system.
-    enum class State
-    {
-      normal_only, ///< glued under tension: no friction
-      stick,       ///< normal and tangential velocity zero
-      slide        ///< normal velocity zero, impulse on the cone's rim
-    };
-
-    /// A contact of the subspace, its state and its tangent directions.
-    struct SubspaceRow
-    {
-      std::uint32_t k;
-      State         state;
-      unsigned int  n_tangential; ///< tangential unknowns (0, 1 or 2)
-      Vec3          t[2];         ///< directions of the tangential unknowns
-      Vec3          d;            ///< slide: direction of the impulse
-      double        kappa;        ///< slide: |v_t| / (mu lambda_n)
-    };
-
     /// A unit vector perpendicular to @p e.
     Vec3
     perpendicular(const Vec3 &e)
@@ -140,18 +121,73 @@ namespace Fidus::Contact
   } // namespace
 
 
+  /// What a contact contributes to the Newton system.
+  enum class ConstraintSystem::NewtonState
+  {
+    normal_only, ///< glued under tension: no friction
+    stick,       ///< normal and tangential velocity zero
+    slide        ///< normal velocity zero, impulse on the cone's rim
+  };
 
-  double
-  ConstraintSystem::frictional_subspace_step(const double               mu,
-                                             const std::vector<Vec3>   &u_star,
-                                             const std::vector<Vec3>   &w_star,
-                                             const std::vector<double> &inv_w,
-                                             const std::vector<double> &inv_j,
-                                             const double               dt,
-                                             const double       tolerance,
-                                             const double       residual_before,
-                                             std::vector<Vec3> &u,
-                                             std::vector<Vec3> &w)
+  /// A contact of the Newton system, its state and its tangent directions.
+  struct ConstraintSystem::NewtonRow
+  {
+    std::uint32_t k;
+    NewtonState   state;
+    unsigned int  n_tangential; ///< tangential unknowns (0, 1 or 2)
+    std::size_t   offset;       ///< index of its normal unknown
+    Vec3          t[2];         ///< directions of the tangential unknowns
+    Vec3          d;            ///< slide: direction of the impulse
+    double        kappa;        ///< slide: |v_t| / (mu lambda_n)
+
+    /// The tangential impulse of the unknowns @p x on this contact.
+    Vec3
+    tangential(const std::vector<double> &x, const double mu) const
+    {
+      Vec3          f{{0., 0., 0.}};
+      const double *y = &x[offset];
+      if (state == NewtonState::stick)
+        for (unsigned j = 0; j < n_tangential; ++j)
+          for (unsigned c = 0; c < 3; ++c)
+            f[c] += y[1 + j] * t[j][c];
+      else if (state == NewtonState::slide)
+        for (unsigned c = 0; c < 3; ++c)
+          f[c] = mu * y[0] * d[c] + (n_tangential ? y[1] * t[0][c] : 0.);
+      return f;
+    }
+  };
+
+
+
+  void
+  ConstraintSystem::row_velocity(const std::size_t        k,
+                                 const std::vector<Vec3> &u,
+                                 const std::vector<Vec3> &w,
+                                 const bool               affine,
+                                 double                  &c,
+                                 Vec3                    &v_t) const
+  {
+    contact_velocity(u,
+                     w,
+                     a_[k],
+                     b_[k],
+                     e_[k],
+                     lever_a_[k],
+                     lever_b_[k],
+                     affine ? surface_a_[k] : Vec3{{0., 0., 0.}},
+                     affine ? rhs_[k] : 0.,
+                     c,
+                     v_t);
+  }
+
+
+
+  std::vector<ConstraintSystem::NewtonRow>
+  ConstraintSystem::newton_rows(const double             mu,
+                                const std::vector<Vec3> &u_star,
+                                const std::vector<Vec3> &w_star,
+                                const std::vector<Vec3> &u,
+                                const std::vector<Vec3> &w) const
   {
     // A planar problem (2D: normals in the xy plane, rotations about z)
     // has one tangential direction: the out-of-plane one has no right-hand
@@ -163,145 +199,113 @@ namespace Fidus::Contact
     for (std::size_t k = 0; k < size() && planar; ++k)
       planar = e_[k][2] == 0.;
 
-    std::vector<SubspaceRow> rows;
-    std::vector<std::size_t> first(1, 0); // offset of each row's unknowns
+    std::vector<NewtonRow> rows;
+    std::size_t            offset = 0;
     for (std::size_t k = 0; k < size(); ++k)
       {
         if (!glued_[k] && !(lambda_[k] > 0.))
           continue;
-        SubspaceRow  row{static_cast<std::uint32_t>(k),
-                        State::normal_only,
-                        0,
-                        {},
-                        {},
-                        0.};
+        NewtonRow    row{static_cast<std::uint32_t>(k),
+                      NewtonState::normal_only,
+                      0,
+                      offset,
+                      {},
+                      {},
+                      0.};
         const double l_t = norm(lambda_t_[k]);
         // A scaled-back impulse lies on the rim to round-off.
         if (lambda_[k] > 0. && l_t < (1. - 1e-10) * mu * lambda_[k])
           {
-            row.state        = State::stick;
+            row.state        = NewtonState::stick;
             row.n_tangential = planar ? 1 : 2;
             row.t[0]         = perpendicular(e_[k]);
             row.t[1]         = cross(e_[k], row.t[0]);
           }
         else if (lambda_[k] > 0.)
           {
-            row.state        = State::slide;
+            row.state        = NewtonState::slide;
             row.n_tangential = planar ? 0 : 1;
             for (unsigned d = 0; d < 3; ++d)
               row.d[d] = lambda_t_[k][d] / l_t;
             row.t[0] = cross(e_[k], row.d);
             double c;
             Vec3   v_t;
-            contact_velocity(u,
-                             w,
-                             a_[k],
-                             b_[k],
-                             e_[k],
-                             lever_a_[k],
-                             lever_b_[k],
-                             surface_a_[k],
-                             rhs_[k],
-                             c,
-                             v_t);
+            row_velocity(k, u, w, true, c, v_t);
             row.kappa = norm(v_t) / (mu * lambda_[k]);
           }
         rows.push_back(row);
-        first.push_back(first.back() + 1 + row.n_tangential);
+        offset += 1 + row.n_tangential;
       }
-    if (rows.empty())
-      return residual_before;
+    return rows;
+  }
 
-    // The tangential impulse of x on row i.
-    auto tangential = [&](const std::vector<double> &x, const std::size_t i) {
-      const SubspaceRow &row = rows[i];
-      Vec3               f{{0., 0., 0.}};
-      const double      *y = &x[first[i]];
-      if (row.state == State::stick)
-        for (unsigned j = 0; j < row.n_tangential; ++j)
-          for (unsigned d = 0; d < 3; ++d)
-            f[d] += y[1 + j] * row.t[j][d];
-      else if (row.state == State::slide)
-        for (unsigned d = 0; d < 3; ++d)
-          f[d] =
-            mu * y[0] * row.d[d] + (row.n_tangential ? y[1] * row.t[0][d] : 0.);
-      return f;
-    };
-    // The rows' equations for the velocities (uu, ww): with @p affine the
-    // residual of the current state, otherwise the linear part.
+
+
+  std::vector<double>
+  ConstraintSystem::newton_direction(const std::vector<NewtonRow> &rows,
+                                     const double                  mu,
+                                     const std::vector<double>    &inv_w,
+                                     const std::vector<double>    &inv_j,
+                                     const double                  dt,
+                                     const double                  tolerance,
+                                     const std::vector<Vec3>      &u,
+                                     const std::vector<Vec3>      &w) const
+  {
+    const std::size_t n = rows.back().offset + 1 + rows.back().n_tangential;
+    // The rows' equations for the velocities (uu, ww): with @p x null the
+    // residual of the current state, otherwise the linear part for the
+    // unknowns x.
     auto equations = [&](const std::vector<Vec3>   &uu,
                          const std::vector<Vec3>   &ww,
-                         const bool                 affine,
-                         std::vector<double>       &y,
-                         const std::vector<double> *x) {
-      for (std::size_t i = 0; i < rows.size(); ++i)
+                         const std::vector<double> *x,
+                         std::vector<double>       &y) {
+      for (const NewtonRow &row : rows)
         {
-          const SubspaceRow  &row = rows[i];
-          const std::uint32_t k   = row.k;
-          double              c;
-          Vec3                v_t;
-          contact_velocity(uu,
-                           ww,
-                           a_[k],
-                           b_[k],
-                           e_[k],
-                           lever_a_[k],
-                           lever_b_[k],
-                           affine ? surface_a_[k] : Vec3{{0., 0., 0.}},
-                           affine ? rhs_[k] : 0.,
-                           c,
-                           v_t);
-          y[first[i]] = c;
+          double c;
+          Vec3   v_t;
+          row_velocity(row.k, uu, ww, x == nullptr, c, v_t);
+          y[row.offset] = c;
           for (unsigned j = 0; j < row.n_tangential; ++j)
-            y[first[i] + 1 + j] = dot(v_t, row.t[j]);
+            y[row.offset + 1 + j] = dot(v_t, row.t[j]);
           // The slide row's own term; lambda_t.p = 0 in the current state.
-          if (row.state == State::slide && row.n_tangential && x)
-            y[first[i] + 1] += row.kappa * (*x)[first[i] + 1];
+          if (row.state == NewtonState::slide && row.n_tangential && x)
+            y[row.offset + 1] += row.kappa * (*x)[row.offset + 1];
         }
     };
+    // y = G_S W^{-1} G_S^T x, matrix-free, as in the frictionless step.
     std::vector<Vec3> v(u.size()), o(w.size());
     auto apply = [&](const std::vector<double> &x, std::vector<double> &y) {
       std::fill(v.begin(), v.end(), Vec3{{0., 0., 0.}});
       std::fill(o.begin(), o.end(), Vec3{{0., 0., 0.}});
-      for (std::size_t i = 0; i < rows.size(); ++i)
-        {
-          const std::uint32_t k = rows[i].k;
-          scatter(v,
-                  o,
-                  a_[k],
-                  b_[k],
-                  e_[k],
-                  lever_a_[k],
-                  lever_b_[k],
-                  x[first[i]],
-                  tangential(x, i),
-                  inv_w,
-                  inv_j);
-        }
-      equations(v, o, false, y, &x);
+      for (const NewtonRow &row : rows)
+        add_impulse(row.k,
+                    x[row.offset],
+                    row.tangential(x, mu),
+                    inv_w,
+                    inv_j,
+                    v,
+                    o);
+      equations(v, o, &x, y);
     };
 
-    std::vector<double> b(first.back());
-    equations(u, w, true, b, nullptr);
+    std::vector<double> b(n);
+    equations(u, w, nullptr, b);
     for (double &bi : b)
       bi = -bi;
     // Right-preconditioned by the diagonal (W_n, W_t, W_t + kappa), which
     // puts the normal, sticking and sliding rows on one scale.
-    std::vector<double> scale(b.size());
-    for (std::size_t i = 0; i < rows.size(); ++i)
+    std::vector<double> scale(n);
+    for (const NewtonRow &row : rows)
       {
-        const std::uint32_t k   = rows[i].k;
-        const double        w_n = inv_w[a_[k]] + inv_w[b_[k]];
-        const double w_t = w_n + lever_a_[k] * lever_a_[k] * inv_j[a_[k]] +
-                           lever_b_[k] * lever_b_[k] * inv_j[b_[k]];
-        scale[first[i]] = 1. / w_n;
-        for (unsigned j = 0; j < rows[i].n_tangential; ++j)
-          scale[first[i] + 1 + j] = 1. / (w_t + rows[i].kappa);
+        scale[row.offset] = 1. / (inv_w[a_[row.k]] + inv_w[b_[row.k]]);
+        for (unsigned j = 0; j < row.n_tangential; ++j)
+          scale[row.offset + 1 + j] =
+            1. / (tangential_weight(row.k, inv_w, inv_j) + row.kappa);
       }
-    std::vector<double> scaled(b.size());
+    std::vector<double> scaled(n);
     auto                preconditioned = [&](const std::vector<double> &y,
                               std::vector<double>       &z) {
-      for (std::size_t i = 0; i < y.size(); ++i)
+      for (std::size_t i = 0; i < n; ++i)
         scaled[i] = scale[i] * y[i];
       apply(scaled, z);
     };
@@ -311,12 +315,27 @@ namespace Fidus::Contact
       std::max(0.1 * tolerance / dt, newton_forcing * max_abs(b));
     std::vector<double> delta =
       bicgstab(preconditioned, b, stop, max_cg_iterations);
-    for (std::size_t i = 0; i < delta.size(); ++i)
+    for (std::size_t i = 0; i < n; ++i)
       delta[i] *= scale[i];
+    return delta;
+  }
 
-    // Take the step, projected on the cones; halve it while it does not
-    // lower the residual (the classification it assumed may be wrong for
-    // a few contacts, which a shorter step disturbs less).
+
+
+  double
+  ConstraintSystem::take_newton_step(const std::vector<NewtonRow> &rows,
+                                     const std::vector<double>    &delta,
+                                     const double                  mu,
+                                     const std::vector<double>    &inv_w,
+                                     const std::vector<double>    &inv_j,
+                                     const double                  dt,
+                                     const double       residual_before,
+                                     std::vector<Vec3> &u,
+                                     std::vector<Vec3> &w)
+  {
+    // The step projected on the cones; halved while it does not lower the
+    // residual (the classification it assumed may be wrong for a few
+    // contacts, which a shorter step disturbs less).
     const std::vector<Vec3> old_u = u, old_w = w;
     std::vector<double>     old_n(rows.size());
     std::vector<Vec3>       old_t(rows.size());
@@ -337,31 +356,21 @@ namespace Fidus::Contact
         for (std::size_t i = 0; i < rows.size(); ++i)
           {
             const std::uint32_t k   = rows[i].k;
-            double              l_n = old_n[i] + alpha * delta[first[i]];
+            double              l_n = old_n[i] + alpha * delta[rows[i].offset];
             if (!glued_[k] && l_n < 0.)
               l_n = 0.;
-            Vec3 l_t = tangential(delta, i);
+            Vec3 l_t = rows[i].tangential(delta, mu);
             for (unsigned d = 0; d < 3; ++d)
               l_t[d] = old_t[i][d] + alpha * l_t[d];
             const double radius = mu * std::max(l_n, 0.), length = norm(l_t);
             if (length > radius ||
-                (rows[i].state == State::slide && length > 0.))
+                (rows[i].state == NewtonState::slide && length > 0.))
               for (unsigned d = 0; d < 3; ++d)
                 l_t[d] *= radius / length;
             Vec3 change_t;
             for (unsigned d = 0; d < 3; ++d)
               change_t[d] = l_t[d] - old_t[i][d];
-            scatter(u,
-                    w,
-                    a_[k],
-                    b_[k],
-                    e_[k],
-                    lever_a_[k],
-                    lever_b_[k],
-                    l_n - old_n[i],
-                    change_t,
-                    inv_w,
-                    inv_j);
+            add_impulse(k, l_n - old_n[i], change_t, inv_w, inv_j, u, w);
             lambda_[k]   = l_n;
             lambda_t_[k] = l_t;
           }
@@ -377,5 +386,35 @@ namespace Fidus::Contact
         lambda_t_[rows[i].k] = old_t[i];
       }
     return residual_before;
+  }
+
+
+
+  double
+  ConstraintSystem::frictional_subspace_step(const double               mu,
+                                             const std::vector<Vec3>   &u_star,
+                                             const std::vector<Vec3>   &w_star,
+                                             const std::vector<double> &inv_w,
+                                             const std::vector<double> &inv_j,
+                                             const double               dt,
+                                             const double       tolerance,
+                                             const double       residual_before,
+                                             std::vector<Vec3> &u,
+                                             std::vector<Vec3> &w)
+  {
+    const std::vector<NewtonRow> rows = newton_rows(mu, u_star, w_star, u, w);
+    if (rows.empty())
+      return residual_before;
+    const std::vector<double> delta =
+      newton_direction(rows, mu, inv_w, inv_j, dt, tolerance, u, w);
+    return take_newton_step(rows,
+                            delta,
+                            mu,
+                            inv_w,
+                            inv_j,
+                            dt,
+                            residual_before,
+                            u,
+                            w);
   }
 } // namespace Fidus::Contact

@@ -324,10 +324,11 @@ namespace Fidus::Contact
     stays_open(std::size_t k, double rhs, const std::vector<Vec3> &u) const;
 
     /**
-     * The frictional subspace step: conjugate gradients on the normal
-     * impulses of the contacts that carry one and the tangential impulses
-     * of those that stick, projected on the cones and kept if the residual
-     * falls below @p residual_before. Returns the residual after the step.
+     * The frictional Newton step (constraint_system_friction_subspace.cc):
+     * on the contacts that carry an impulse, with their stick or slip state
+     * frozen, the direction from newton_direction(), projected on the cones
+     * and kept, whole or halved, if the residual falls below
+     * @p residual_before. Returns the residual after the step.
      */
     double
     frictional_subspace_step(double                     mu,
@@ -340,6 +341,90 @@ namespace Fidus::Contact
                              double                     residual_before,
                              std::vector<Vec3>         &u,
                              std::vector<Vec3>         &w);
+
+    enum class NewtonState;
+    struct NewtonRow;
+
+    /// The contacts of the Newton step, their states and unknowns.
+    std::vector<NewtonRow>
+    newton_rows(double                   mu,
+                const std::vector<Vec3> &u_star,
+                const std::vector<Vec3> &w_star,
+                const std::vector<Vec3> &u,
+                const std::vector<Vec3> &w) const;
+
+    /// The Newton direction for @p rows at (u, w): BiCGStab, inexact.
+    std::vector<double>
+    newton_direction(const std::vector<NewtonRow> &rows,
+                     double                        mu,
+                     const std::vector<double>    &inv_w,
+                     const std::vector<double>    &inv_j,
+                     double                        dt,
+                     double                        tolerance,
+                     const std::vector<Vec3>      &u,
+                     const std::vector<Vec3>      &w) const;
+
+    /// Take the step @p delta, projected on the cones, whole or halved if
+    /// that lowers the residual; otherwise leave everything as it was.
+    double
+    take_newton_step(const std::vector<NewtonRow> &rows,
+                     const std::vector<double>    &delta,
+                     double                        mu,
+                     const std::vector<double>    &inv_w,
+                     const std::vector<double>    &inv_j,
+                     double                        dt,
+                     double                        residual_before,
+                     std::vector<Vec3>            &u,
+                     std::vector<Vec3>            &w);
+
+    /**
+     * The frictionless subspace step on the normal impulses with the
+     * tangential ones frozen, then every tangential impulse put back into
+     * its new cone; the fallback of a rejected Newton step. Returns the
+     * frictional residual after it.
+     */
+    double
+    frictionless_fallback_step(double                     mu,
+                               const std::vector<Vec3>   &u_star,
+                               const std::vector<double> &inv_w,
+                               const std::vector<double> &inv_j,
+                               double                     dt,
+                               double                     tolerance,
+                               std::vector<Vec3>         &u,
+                               std::vector<Vec3>         &w);
+
+    /// Relative velocity of row @p k's contact for (u, w): with @p affine
+    /// its constraint value c and tangential velocity, otherwise the linear
+    /// parts only (no gap, no wall surface velocity).
+    void
+    row_velocity(std::size_t              k,
+                 const std::vector<Vec3> &u,
+                 const std::vector<Vec3> &w,
+                 bool                     affine,
+                 double                  &c,
+                 Vec3                    &v_t) const;
+
+    /// W_t of row @p k: its tangential Delassus entry.
+    double
+    tangential_weight(std::size_t                k,
+                      const std::vector<double> &inv_w,
+                      const std::vector<double> &inv_j) const
+    {
+      return inv_w[a_[k]] + inv_w[b_[k]] +
+             lever_a_[k] * lever_a_[k] * inv_j[a_[k]] +
+             lever_b_[k] * lever_b_[k] * inv_j[b_[k]];
+    }
+
+    /// Add the impulse (dn e + dt) of row @p k to the velocities (u, w) of
+    /// its bodies.
+    void
+    add_impulse(std::size_t                k,
+                double                     dn,
+                const Vec3                &dt,
+                const std::vector<double> &inv_w,
+                const std::vector<double> &inv_j,
+                std::vector<Vec3>         &u,
+                std::vector<Vec3>         &w) const;
 
     /// Dual objective 1/2 lambda^T A lambda + b^T lambda, from u.
     double
