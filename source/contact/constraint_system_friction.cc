@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fidus/contact/constraint_system.h>
 #include <fidus/contact/vector_operations.h>
+#include <limits>
 
 // Coulomb friction in the projection (doc/theory/contact.md, "Friction"):
 // the non-smooth block Gauss-Seidel method of Moreau and Jean, with the
@@ -145,9 +146,20 @@ namespace Fidus::Contact
         Vec3 dt_change;
         for (unsigned d = 0; d < 3; ++d)
           dt_change[d] = next.t[d] - old.t[d];
-        const double dn_change = next.n - old.n;
-        change                 = std::max(
+        double dn_change = next.n - old.n;
+        change           = std::max(
           {change, diag_[k] * std::abs(dn_change), w_t[k] * norm(dt_change)});
+        // A convex combination of two impulses in the cone stays in it.
+        if (relaxation_ < 1.)
+          {
+            dn_change *= relaxation_;
+            next.n = old.n + dn_change;
+            for (unsigned d = 0; d < 3; ++d)
+              {
+                dt_change[d] *= relaxation_;
+                next.t[d] = old.t[d] + dt_change[d];
+              }
+          }
         if (dn_change != 0. || dt_change != zero)
           {
             lambda_[k]   = next.n;
@@ -240,6 +252,30 @@ namespace Fidus::Contact
 
 
 
+  // Where contacts stick in a jammed cluster at a large friction
+  // coefficient, the exact local updates can cycle: a contact that one
+  // neighbour's update makes slide is made to stick by the next, and the
+  // residual stays at about 1e-5 for ever (a 1000-sphere packing at mu = 1,
+  // doc/history/contact.md). Taking a fraction of each update breaks the
+  // cycle, at the cost of a slower linear rate; so it is taken only after
+  // a window of iterations without progress, and lowered step by step.
+  void
+  ConstraintSystem::relax_if_stalled(const double  residual,
+                                     StallMonitor &monitor)
+  {
+    monitor.minimum = std::min(monitor.minimum, residual);
+    if (++monitor.count < stall_window)
+      return;
+    if (monitor.minimum > stall_progress * monitor.previous_minimum)
+      relaxation_ =
+        std::max(minimum_relaxation, relaxation_factor * relaxation_);
+    monitor.previous_minimum = monitor.minimum;
+    monitor.minimum          = std::numeric_limits<double>::max();
+    monitor.count            = 0;
+  }
+
+
+
   ConstraintSystem::Result
   ConstraintSystem::solve_frictional(const double               mu,
                                      const std::vector<Vec3>   &u_star,
@@ -279,9 +315,12 @@ namespace Fidus::Contact
     result.residual = frictional_residual(mu, u, w, inv_w, inv_j, dt);
 
     std::vector<std::uint32_t> active;
+    relaxation_ = 1.;
+    StallMonitor monitor{result.residual, result.residual};
 
     while (result.residual > tolerance && result.iterations < max_iterations)
       {
+        relax_if_stalled(result.residual, monitor);
         // Sweeps alternate direction, as in the frictionless Gauss-Seidel,
         // so that a chain of contacts is resolved as fast from either end.
         const bool forward = (result.iterations % 2 == 0);
@@ -347,8 +386,9 @@ namespace Fidus::Contact
           }
       }
     apply_all();
-    result.residual  = frictional_residual(mu, u, w, inv_w, inv_j, dt);
-    result.converged = result.residual <= tolerance;
+    result.residual   = frictional_residual(mu, u, w, inv_w, inv_j, dt);
+    result.converged  = result.residual <= tolerance;
+    result.relaxation = relaxation_;
     return result;
   }
 } // namespace Fidus::Contact

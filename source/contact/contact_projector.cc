@@ -754,6 +754,8 @@ namespace Fidus::Contact
         const unsigned int iterations_before = result.iterations;
         result                               = solve_rows(dt);
         result.iterations += iterations_before;
+        statistics.relaxation =
+          std::min(statistics.relaxation, result.relaxation);
         statistics.solve_seconds += seconds_since(start_solve);
 
         // A posteriori check of the alert distance (see the header).

@@ -135,17 +135,19 @@ namespace ConeCheck
 
   /// @p n particles in the unit box (the density of 2000 discs or 1000
   /// spheres), squeezed towards the centre and sheared with random spins
-  /// for @p steps projections with mu = 0.5 and the model @p model; every
-  /// projection's contacts checked with check_cone().
+  /// for @p steps projections with friction coefficient @p mu and the
+  /// model @p model; every projection's contacts checked with
+  /// check_cone().
   /// Measured numbers go to @p log.
   inline void
   check_squeezed_packing(const unsigned    dim,
                          const std::size_t n,
                          const Model       model,
                          const int         steps,
-                         std::FILE        *log)
+                         std::FILE        *log,
+                         const double      mu = 0.5)
   {
-    const double        tolerance = 1e-10, mu = 0.5, dt = 0.005;
+    const double        tolerance = 1e-10, dt = 0.005;
     TestTools::Random   random(11);
     std::vector<Vec3>   x;
     std::vector<double> a;
@@ -172,11 +174,11 @@ namespace ConeCheck
     ConeErrors        worst;
     std::vector<Vec3> u_star(n), w_star(n), u, w;
     bool              converged  = true;
-    unsigned int      iterations = 0, sliding = 0, active = 0;
+    unsigned int      iterations = 0, sliding = 0, active = 0, relaxed = 0;
     // Squeezed until about one active contact per particle, the
-    // density of a dense suspension's contact network. (Squeezed
-    // further, to more contacts than particles, a few projections
-    // stall in clusters of stuck contacts: doc/theory/contact.md.)
+    // density of a dense suspension's contact network (contact/friction
+    // also squeezes a packing at mu = 1 to where the sweeps stall and
+    // relax; contact/friction_large squeezes further).
     for (int step = 0; step < steps; ++step)
       {
         // Squeezed towards the centre and sheared, with random spins.
@@ -199,7 +201,8 @@ namespace ConeCheck
         converged     = converged && st.converged;
         iterations    = std::max(iterations, st.iterations);
         sliding       = st.n_sliding;
-        active        = st.n_active;
+        relaxed += st.relaxation < 1. ? 1 : 0;
+        active = st.n_active;
         const ConeErrors e =
           check_cone(projector, a, u_star, w_star, u, w, mu, dt);
         worst.sign = std::max(worst.sign, e.sign);
@@ -216,19 +219,23 @@ namespace ConeCheck
           for (unsigned d = 0; d < dim; ++d)
             x[i][d] += dt * u[i][d];
       }
+    char mu_text[32];
+    std::snprintf(mu_text, sizeof(mu_text), ", mu = %g: ", mu);
     const std::string head =
       std::to_string(dim) + "D " + std::to_string(n) + " particles, " +
-      (model == Model::gluey ? "gluey" : "inelastic") + ", mu = 0.5: ";
+      (model == Model::gluey ? "gluey" : "inelastic") + mu_text;
     std::fprintf(log,
                  "%slast step %u active, %u sliding; over %d steps %u "
-                 "stuck and %u sliding contacts, at most %u sweeps\n",
+                 "stuck and %u sliding contacts, at most %u sweeps, %u "
+                 "relaxed\n",
                  head.c_str(),
                  active,
                  sliding,
                  steps,
                  worst.n_stick,
                  worst.n_slide,
-                 iterations);
+                 iterations,
+                 relaxed);
     // The tolerance bounds each contact's local correction in length
     // units; a few times it bounds what follows from it.
     const double tol = 4. * tolerance;

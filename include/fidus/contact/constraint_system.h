@@ -42,6 +42,9 @@ namespace Fidus::Contact
       unsigned int iterations = 0;
       double       residual   = 0.; ///< KKT residual, length units
       bool         converged  = false;
+      /// Frictional solve: the smallest relaxation of the local updates
+      /// that it had to take (1: none; solve_frictional()).
+      double relaxation = 1.;
     };
 
     /// Remove all rows.
@@ -305,8 +308,10 @@ namespace Fidus::Contact
      * One Gauss-Seidel sweep of the frictional problem over the rows
      * listed in @p rows (all rows when null), in order or backwards: each
      * contact takes its exact local Coulomb solution with the others
-     * frozen, and @p u, @p w follow. Returns the largest local change,
-     * max(W_n |d lambda_n|, W_t |d lambda_t|); @p w_t holds the W_t.
+     * frozen (moved only the fraction relaxation_ towards it when that is
+     * below 1), and @p u, @p w follow. Returns the largest local change,
+     * max(W_n |d lambda_n|, W_t |d lambda_t|), of the unrelaxed update;
+     * @p w_t holds the W_t.
      */
     double
     frictional_sweep(const std::vector<std::uint32_t> *rows,
@@ -443,6 +448,34 @@ namespace Fidus::Contact
     static constexpr unsigned int newton_attempts = 3;
     /// Bound on the conjugate-gradient iterations of one subspace step.
     static constexpr unsigned int max_cg_iterations = 30;
+    /// Stall detection of the frictional sweeps: iterations per window.
+    static constexpr unsigned int stall_window = 100;
+    /// A window is stalled if its smallest residual is above this fraction
+    /// of the previous window's.
+    static constexpr double stall_progress = 0.9;
+    /// Relaxation after each stalled window: multiplied by this factor ...
+    static constexpr double relaxation_factor = 0.8;
+    /// ... down to this value.
+    static constexpr double minimum_relaxation = 0.5;
+
+    /**
+     * Tracks the residuals of the frictional iterations by windows of
+     * stall_window and lowers relaxation_ after a window that did not
+     * make progress (ConstraintSystem::solve_frictional()).
+     */
+    struct StallMonitor
+    {
+      double       previous_minimum;
+      double       minimum;
+      unsigned int count = 0;
+    };
+
+    /// Record @p residual in @p monitor; relax the sweeps if it stalled.
+    void
+    relax_if_stalled(double residual, StallMonitor &monitor);
+
+    /// Fraction of each exact local update that the frictional sweeps take.
+    double relaxation_ = 1.;
 
     std::vector<std::uint32_t> a_, b_;
     std::vector<Vec3>          e_;

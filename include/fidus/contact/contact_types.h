@@ -98,12 +98,15 @@ namespace Fidus::Contact
     unsigned int n_active      = 0; ///< constraints with lambda != 0
     unsigned int n_glued       = 0; ///< glued pairs after the step
     /// Contacts that slide (tangential impulse on the rim of the cone).
-    unsigned int n_sliding      = 0;
-    unsigned int iterations     = 0;
-    double       residual       = 0.; ///< max constraint violation (length)
-    bool         converged      = true;
-    double       min_gap        = 0.; ///< smallest gap before the step
-    double       alert_distance = 0.; ///< alert distance actually used
+    unsigned int n_sliding  = 0;
+    unsigned int iterations = 0;
+    double       residual   = 0.; ///< max constraint violation (length)
+    bool         converged  = true;
+    /// Friction: the smallest fraction of the exact local updates that the
+    /// sweeps took after they stalled (1: never relaxed).
+    double relaxation     = 1.;
+    double min_gap        = 0.; ///< smallest gap before the step
+    double alert_distance = 0.; ///< alert distance actually used
     /// How many times the pair search was redone with a larger alert
     /// distance because corrected velocities outran the first one.
     unsigned int n_search_repeats = 0;
