@@ -25,9 +25,10 @@ namespace Fidus
       "Nitsche's method, on a mesh built for every solve (from Mesh "
       "refinement/Minimum level to Maximum level at the surfaces, thin "
       "gaps, between particles and to the walls, further); one serial "
-      "solve (Cut linear solver), in the unit box in linear shear or "
-      "between sliding walls, from a pair to a dense 2D suspension "
-      "(doc/cut_element.md).");
+      "solve (Cut linear solver), in a box whose sides are whole "
+      "multiples of the shortest, in linear shear or between sliding "
+      "walls, from a pair to a dense 2D suspension "
+      "(doc/theory/cut_element.md).");
     prm.declare_entry("Viscosity",
                       "1",
                       Patterns::Double(0.),

@@ -1,6 +1,8 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/numerics/data_out.h>
+#include <fidus/fluid/fictitious_domain/solid_indicator.h>
+#include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fidus/io/field_output.h>
 #include <fidus/io/pvd_records.h>
 #include <fstream>
@@ -70,16 +72,25 @@ namespace Fidus
     data_out.add_data_vector(level, "level");
     data_out.add_data_vector(rank, "subdomain");
     data_out.build_patches(solver.get_fe().degree);
+    write(data_out, step, time, tria.get_communicator());
+  }
 
+  template <int dim>
+  void
+  FieldOutput<dim>::write(const DataOut<dim> &data_out,
+                          const unsigned int  step,
+                          const double        time,
+                          const MPI_Comm      comm)
+  {
     const std::string pvtu =
       data_out.write_vtu_with_pvtu_record(directory + "/",
                                           "solution",
                                           step,
-                                          tria.get_communicator(),
+                                          comm,
                                           5,
                                           0);
     records.emplace_back(time, pvtu);
-    if (this_rank == 0)
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         std::ofstream pvd(directory + "/solution.pvd");
         DataOutBase::write_pvd_record(pvd, records);

@@ -1,20 +1,26 @@
 #ifndef fidus_io_field_output_h
 #define fidus_io_field_output_h
 
-#include <fidus/fluid/fictitious_domain/solid_indicator.h>
-#include <fidus/fluid/fictitious_domain/stokes_solver.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/numerics/data_out.h>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace Fidus
 {
+  template <int dim>
+  class StokesSolver;
+  template <int dim>
+  class SolidIndicator;
+
   /**
    * Writes the fluid fields of one time step as solution-NNNNN.pvtu (one
-   * .vtu per rank) and keeps solution.pvd up to date: velocity, pressure,
-   * the rigidity multiplier, and per cell the solid fraction (the discrete
-   * characteristic function, i.e. the viscosity indicator), the refinement
-   * level and the owning rank.
+   * .vtu per rank) and keeps solution.pvd up to date. For the fictitious
+   * domain: velocity, pressure, the rigidity multiplier, and per cell the
+   * solid fraction (the discrete characteristic function, i.e. the
+   * viscosity indicator), the refinement level and the owning rank; other
+   * models hand in their own DataOut.
    */
   template <int dim>
   class FieldOutput
@@ -31,6 +37,14 @@ namespace Fidus
           const SolidIndicator<dim> &solid,
           const unsigned int         step,
           const double               time);
+
+    /// Write the patches of @p data_out (built) for output number
+    /// @p step at @p time, on the ranks of @p comm.
+    void
+    write(const dealii::DataOut<dim> &data_out,
+          unsigned int                step,
+          double                      time,
+          MPI_Comm                    comm);
 
     /// A resumed run: keep the collection entries of steps up to
     /// @p last_step (the checkpoint's) and rewrite solution.pvd with them

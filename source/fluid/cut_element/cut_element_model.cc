@@ -22,7 +22,12 @@ namespace Fidus
     , timer(timer_output)
     , warnings(warning_log)
     , n(parameters.n_particles())
+    , unit(box_geometry.smallest_side)
   {
+    // Whole multiples of the shortest side (CutElementParameters::check).
+    for (unsigned int d = 0; d < dim; ++d)
+      box_cells.push_back(
+        static_cast<unsigned int>(std::lround((box.hi[d] - box.lo[d]) / unit)));
     // The cut element's sparse direct solve is serial.
     const unsigned int ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
     if (ranks > 1)
@@ -111,6 +116,8 @@ namespace Fidus
         Cut::Boundary::linear_shear;
     s.shear_rate   = g;
     s.viscosity    = prm.fluid.viscosity;
+    s.box_cells    = box_cells;
+    s.keep_fields  = prm.output.field_output_interval > 0;
     s.global_level = prm.refinement.minimum_level;
     s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
     s.gap_cells   = prm.cut_element.gap_cells;
@@ -130,13 +137,16 @@ namespace Fidus
     s.particles.resize(n);
     for (unsigned int i = 0; i < n; ++i)
       {
+        // In the solver's units: lengths over the unit, forces over its
+        // power dim - 1 (a force is viscosity x velocity x length^(dim-2)).
         auto &P = s.particles[i];
         for (unsigned int d = 0; d < dim; ++d)
-          P.center[d] = X[i][d];
-        P.radius = radii[i];
+          P.center[d] = (X[i][d] - box.lo[d]) / unit;
+        P.radius = radii[i] / unit;
         if (!prm.particles.external_forces.empty())
           for (unsigned int d = 0; d < dim; ++d)
-            P.force[d] = prm.particles.external_forces[i][d];
+            P.force[d] =
+              prm.particles.external_forces[i][d] / std::pow(unit, dim - 1);
       }
 
     typename Cut::Result r;
@@ -169,31 +179,34 @@ namespace Fidus
       {
         U[i] = {{0., 0., 0.}};
         for (unsigned int d = 0; d < dim; ++d)
-          U[i][d] = r.velocity[i][d];
+          U[i][d] = unit * r.velocity[i][d];
         for (unsigned int d = 0; d < 3; ++d)
           W[i][d] = r.angular_velocity[i][d];
       }
 
     // The stress in the form of HydrodynamicStress (doc/rheology.md):
-    // Sigma = -<p>_f I + 2 eta <e(u)> + (1/V) sum S_a over the unit box,
+    // Sigma = -<p>_f I + 2 eta <e(u)> + (1/V) sum S_a over the box,
     // where <e(u)> is the boundary's shear, since the velocity is rigid
     // in the particles. In plane strain the zz stresslet is half the
     // in-plane trace (with_plane_strain_zz()). Between sliding walls the
     // walls' stress sigma e_y is measured too (entries (a, y)), as the
     // fictitious domain's is; with linear shear it is not (NaN).
-    using Tensor3            = typename HydrodynamicStress<dim>::Tensor3;
-    Stress &h                = last_stress;
-    h                        = Stress();
-    h.volume                 = 1.;
+    using Tensor3      = typename HydrodynamicStress<dim>::Tensor3;
+    Stress &h          = last_stress;
+    h                  = Stress();
+    const double scale = std::pow(unit, dim);
+    h.volume           = scale;
+    for (unsigned int d = 0; d < dim; ++d)
+      h.volume *= box_cells[d];
     h.fluid_pressure         = r.fluid_pressure;
-    h.solid_fraction         = 1. - r.fluid_volume;
+    h.solid_fraction         = 1. - scale * r.fluid_volume / h.volume;
     h.mean_strain_rate[0][1] = 0.5 * g;
     for (unsigned int i = 0; i < n; ++i)
       {
         Tensor3 S;
         for (unsigned int a = 0; a < dim; ++a)
           for (unsigned int b = a; b < dim; ++b)
-            S[a][b] = r.stresslets[i][a][b];
+            S[a][b] = scale * r.stresslets[i][a][b];
         if (dim == 2)
           S = with_plane_strain_zz(S);
         h.stresslets.push_back(S);
@@ -208,6 +221,7 @@ namespace Fidus
       for (unsigned int a = 0; a < dim; ++a)
         h.wall[a][1] = r.top_wall_stress[a];
     solved_shear_rate = g;
+    last_fields       = r.fields;
     return stats;
   }
 

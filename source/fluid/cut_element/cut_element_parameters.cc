@@ -1,5 +1,6 @@
 // The cut finite element's entries of the subsection Fluid.
 
+#include <cmath>
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
@@ -76,16 +77,26 @@ namespace Fidus
                        "cut element's box has the shear's velocity on "
                        "every face, or on the walls y = 0, 1 with the other "
                        "faces periodic)");
+    // The cut mesh is built of cubes of the shortest side (CutMesh), so
+    // every side must hold a whole number of them.
+    const double shortest = scene.smallest_side();
     for (unsigned int d = 0; d < scene.dimension; ++d)
-      if (domain.lower_left[d] != 0. || domain.upper_right[d] != 1.)
-        {
-          std::ostringstream m;
-          m << "entries 'Domain/Lower left' and 'Domain/Upper right' give "
-            << domain.lower_left[d] << " to " << domain.upper_right[d] << " in "
-            << "xyz"[d] << " with " << model
-            << "; allowed: the unit box, 0 to 1 in every direction";
-          throw InputError(m.str());
-        }
+      {
+        const double ratio =
+          (domain.upper_right[d] - domain.lower_left[d]) / shortest;
+        if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio)
+          {
+            std::ostringstream m;
+            m << "entries 'Domain/Lower left' and 'Domain/Upper right' give "
+              << "a side of " << domain.upper_right[d] - domain.lower_left[d]
+              << " in "
+              << "xyz"[d] << ", " << ratio << " times the shortest side "
+              << shortest << ", with " << model
+              << "; allowed: sides that are whole multiples of the "
+                 "shortest (the cut mesh is made of cubes)";
+            throw InputError(m.str());
+          }
+      }
     if (!(minimum_gap > 0.))
       throw InputError("entry 'Fluid/Cut minimum gap' has the value " +
                        std::to_string(minimum_gap) +
@@ -96,11 +107,5 @@ namespace Fidus
                        model +
                        "; allowed: false (the cut element resolves the "
                        "gaps down to Fluid/Cut minimum gap)");
-    if (scene.output.field_output_interval > 0)
-      throw InputError("entry 'Output/Field output interval' is " +
-                       std::to_string(scene.output.field_output_interval) +
-                       " with " + model +
-                       "; allowed: 0 (the cut element writes no fields "
-                       "yet)");
   }
 } // namespace Fidus

@@ -65,9 +65,9 @@ namespace Fidus
       return p;
     }
 
-    /// A boundary cell's position on a face of the unit box: its level
-    /// and its lower corner in cells of that level, the face's axis left
-    /// out (0).
+    /// A boundary cell's position on a face of the box (of unit cells):
+    /// its level and its lower corner in cells of that level, the face's
+    /// axis left out (0).
     template <int dim>
     using FaceKey = std::pair<int, std::array<long, dim>>;
 
@@ -104,7 +104,7 @@ namespace Fidus
         Point<dim> c = centers[i];
         for (unsigned int d = 0; d < dim; ++d)
           if (periodic[d])
-            c[d] -= std::floor(c[d]);
+            c[d] -= sides[d] * std::floor(c[d] / sides[d]);
         std::array<int, dim> shift;
         for (unsigned int d = 0; d < dim; ++d)
           shift[d] = periodic[d] ? -1 : 0;
@@ -114,8 +114,9 @@ namespace Fidus
             double outside2 = 0.;
             for (unsigned int d = 0; d < dim; ++d)
               {
-                b.center[d] += shift[d];
-                const double o = std::max({-b.center[d], 0., b.center[d] - 1.});
+                b.center[d] += shift[d] * sides[d];
+                const double o =
+                  std::max({-b.center[d], 0., b.center[d] - sides[d]});
                 outside2 += o * o;
               }
             if (std::sqrt(outside2) < b.radius + reach)
@@ -220,7 +221,7 @@ namespace Fidus
             // A thin gap between a particle and a wall is refined alike.
             if (!near_other && s.gap_cells > 0.)
               for (unsigned int d = 0; d < dim; ++d)
-                if (!periodic[d] && std::min(x[d], 1. - x[d]) < reach)
+                if (!periodic[d] && std::min(x[d], sides[d] - x[d]) < reach)
                   near_other = true;
             if (!near_other)
               continue;
@@ -254,13 +255,31 @@ namespace Fidus
                         const Settings                &s)
     : triangulation(Triangulation<dim>::limit_level_difference_at_vertices)
   {
+    std::vector<unsigned int> cells(dim, 1);
+    if (!s.box_cells.empty())
+      cells = s.box_cells;
+    Point<dim> upper;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        if (cells.size() != dim || cells[d] == 0)
+          throw std::invalid_argument(
+            "CutMesh: the box's numbers of unit cells are not dim "
+            "positive integers");
+        sides[d] = upper[d] = cells[d];
+      }
     std::vector<bool> periodic(dim, false);
     for (const unsigned int axis : s.periodic_axes)
       periodic[axis] = true;
     add_balls_with_images(centers, radii, s, periodic);
     check_gaps();
 
-    GridGenerator::hyper_cube(triangulation, 0., 1., true);
+    // Unit cells, so that a level is the same cell size whatever the box
+    // and the face keys below count cells of one size along every face.
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              cells,
+                                              Point<dim>(),
+                                              upper,
+                                              true);
     triangulation.refine_global(s.global_level);
     refine_band(s);
 

@@ -57,6 +57,15 @@ namespace Fidus
              ">= 0 (0 leaves small cut pieces unstable)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
+    if (!s.box_cells.empty() && s.box_cells.size() != dim)
+      refuse("the number of box_cells", s.box_cells.size(), "dim, or none");
+    for (const unsigned int n : s.box_cells)
+      if (n == 0)
+        refuse("a box side in unit cells", 0, ">= 1");
+    if (exact_case && side(0) * side(1) * (dim == 3 ? side(2) : 1.) != 1.)
+      refuse("the box's volume for the exact inclusion",
+             side(0) * side(1) * (dim == 3 ? side(2) : 1.),
+             "1 (the unit box)");
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const auto &P = particles[k];
@@ -65,12 +74,12 @@ namespace Fidus
                  P.radius,
                  "> 0");
         for (unsigned int d = 0; d < dim; ++d)
-          if (!is_periodic(d) &&
-              (P.center[d] - P.radius <= 0. || P.center[d] + P.radius >= 1.))
+          if (!is_periodic(d) && (P.center[d] - P.radius <= 0. ||
+                                  P.center[d] + P.radius >= side(d)))
             refuse("coordinate " + std::to_string(d) + " of particle " +
                      std::to_string(k) + "'s centre",
                    P.center[d],
-                   "the particle inside the unit box");
+                   "the particle inside the box");
       }
   }
 
@@ -92,6 +101,7 @@ namespace Fidus
     mesh_settings.gap_cells      = s.gap_cells;
     mesh_settings.max_gap_levels = s.max_gap_levels;
     mesh_settings.periodic_axes  = periodic_axes;
+    mesh_settings.box_cells      = s.box_cells;
     mesh = std::make_unique<const CutMesh<dim>>(centers, radii, mesh_settings);
     result.n_gap_refinements      = mesh->n_gap_refinements;
     result.n_periodic_refinements = mesh->n_periodic_refinements;
@@ -127,14 +137,14 @@ namespace Fidus
                                                        particles[0].radius,
                                                        g,
                                                        eta);
-    const LinearShear    shear(g);
+    const LinearShear    shear(g, 0.5 * side(1));
     const Function<dim> &box_velocity =
       s.boundary == Boundary::exact_inclusion ?
         static_cast<const Function<dim> &>(*exact) :
         static_cast<const Function<dim> &>(shear);
 
     // The box takes the exact velocity (the faces are numbered 2d, 2d + 1
-    // for axis d), sliding walls only on y = 0, 1, with the periodic faces
+    // for axis d), sliding walls only on y = 0, H, with the periodic faces
     // identified. One pressure value is pinned, since with the velocity
     // given on every wall the pressure is fixed up to a constant.
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
@@ -202,7 +212,7 @@ namespace Fidus
         if (!ghost_pair(lower, upper))
           continue;
         GhostFace face{lower, upper, 2 * pair.axis, 2 * pair.axis + 1};
-        face.shift[pair.axis] = -1.;
+        face.shift[pair.axis] = -side(pair.axis);
         ghost_faces.push_back(face);
       }
   }
@@ -936,13 +946,14 @@ namespace Fidus
                   phi[side][a][dofs[i]] = 1.;
               }
           }
+    const double area = dim == 2 ? side(0) : side(0) * side(2);
     for (unsigned int side = 0; side < 2; ++side)
       for (unsigned int a = 0; a < dim; ++a)
         {
           hanging.distribute(phi[side][a]);
           // sigma e_y: the force on the top wall (n = e_y), minus the
-          // force on the bottom one.
-          const double force = phi[side][a] * residual;
+          // force on the bottom one, over the wall's area.
+          const double force = phi[side][a] * residual / area;
           if (side == 1)
             result.top_wall_stress[a] = force;
           else

@@ -101,29 +101,32 @@ namespace Fidus
       measure_solution();
       wall_stress();
       exact_inclusion_errors();
+      if (s.keep_fields)
+        keep_fields();
       result.seconds = timer.wall_time();
       return result;
     }
 
   private:
     /// The box's velocity for a linear shear and sliding walls:
-    /// u = g (y - 1/2) e_x, p = 0.
+    /// u = g (y - y_mid) e_x, p = 0.
     class LinearShear : public Function<dim>
     {
     public:
-      explicit LinearShear(const double g)
+      LinearShear(const double g, const double y_mid)
         : Function<dim>(dim + 1)
         , g(g)
+        , y_mid(y_mid)
       {}
 
       double
       value(const Point<dim> &x, const unsigned int component) const override
       {
-        return component == 0 ? g * (x[1] - 0.5) : 0.;
+        return component == 0 ? g * (x[1] - y_mid) : 0.;
       }
 
     private:
-      const double g;
+      const double g, y_mid;
     };
 
     using Particle     = typename CutStokesInclusion<dim>::Particle;
@@ -219,7 +222,19 @@ namespace Fidus
     void
     exact_inclusion_errors();
 
+    /// Hand the mesh, a copy of the DoFs and the fluid unknowns to
+    /// Result::fields (Settings::keep_fields; cut_stokes_solve_fields.cc).
+    void
+    keep_fields();
+
     /// @}
+
+    /// The box's side along axis @p d (Settings::box_cells).
+    double
+    side(const unsigned int d) const
+    {
+      return s.box_cells.empty() ? 1. : double(s.box_cells.at(d));
+    }
 
     /// Whether axis @p d is periodic.
     bool

@@ -4,8 +4,11 @@
 #include <deal.II/base/timer.h>
 #include <fidus/core/parameters.h>
 #include <fidus/core/warning_log.h>
+#include <fidus/fluid/cut_element/cut_fields.h>
 #include <fidus/fluid/fluid_model.h>
+#include <fidus/io/field_output.h>
 #include <fidus/simulation/box_geometry.h>
+#include <memory>
 
 namespace Fidus
 {
@@ -18,6 +21,14 @@ namespace Fidus
    * (refused on more, naming the entry). Touching or overlapping
    * particles, which the contact models allow, are seen by its fluid with
    * radii reduced until every gap is the minimum gap.
+   *
+   * The box may have any size whose sides are whole multiples of the
+   * shortest (as the fictitious domain's coarse mesh): Stokes flow is
+   * invariant under translation and scaling, so the solver works in the
+   * box shifted to the origin and scaled by the shortest side (velocities
+   * scale with the length, forces with its power dim - 1, stresslets with
+   * its power dim; the shear rate and the stress do not change), and the
+   * answers are scaled back.
    */
   template <int dim>
   class CutElementModel : public FluidModel<dim>
@@ -54,6 +65,17 @@ namespace Fidus
     void
     add_to_summary(RunSummary &summary) const override;
 
+    /// Field output to @p directory (with Output/Field output interval >
+    /// 0): the velocity and the pressure (relative to the fluid's mean) on
+    /// the cut mesh of the last solve, and per cell its placement (0 fluid,
+    /// 1 cut, 2 inside a particle) and level.
+    void
+    open_field_output(const std::string  &directory,
+                      const unsigned int *resumed_step) override;
+
+    void
+    write_fields(unsigned int step, double time) override;
+
   private:
     /// The radius each particle's fluid sees at @p X: reduced so that every
     /// gap, to a wall or to another particle, is at least Fluid/Cut
@@ -67,10 +89,20 @@ namespace Fidus
     WarningLog             &warnings;
     const unsigned int      n;
 
+    /// The solver's length unit (the box's shortest side) and the box in
+    /// it.
+    double                    unit = 1.;
+    std::vector<unsigned int> box_cells;
+
     /// Stress, cells and unknowns of the last solve, and its shear rate.
     Stress             last_stress;
     unsigned long long last_cells = 0, last_dofs = 0;
     double             solved_shear_rate = 0.;
+
+    /// The fields of the last solve (kept with field output only), and
+    /// their writer.
+    std::shared_ptr<const CutFields<dim>> last_fields;
+    std::unique_ptr<FieldOutput<dim>>     field_output;
   };
 } // namespace Fidus
 

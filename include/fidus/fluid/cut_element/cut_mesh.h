@@ -1,6 +1,7 @@
 #ifndef fidus_fluid_cut_mesh_h
 #define fidus_fluid_cut_mesh_h
 
+#include <array>
 #include <deal.II/base/point.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
@@ -12,7 +13,8 @@ namespace Fidus
   using namespace dealii;
 
   /**
-   * The mesh of CutStokesInclusion: the unit box, refined in bands around
+   * The mesh of CutStokesInclusion: the box [0, n_0] x ... of unit cells
+   * (Settings::box_cells; the unit box by default), refined in bands around
    * the particle surfaces and in the thin gaps between them, and where
    * each of its cells lies relative to the particles (inside one, cut by
    * one surface, or in the fluid).
@@ -49,8 +51,11 @@ namespace Fidus
     /// How the mesh is refined.
     struct Settings
     {
-      /// Global refinement of the unit box.
+      /// Global refinement of the box's unit cells.
       unsigned int global_level = 4;
+      /// The box [0, n_0] x ... x [0, n_{dim-1}] as its numbers of unit
+      /// cells along each axis; empty: the unit box.
+      std::vector<unsigned int> box_cells;
       /// Further levels in a band around the particle surfaces.
       unsigned int band_levels = 0;
       /// Width of that band in cells of the level being refined.
@@ -77,8 +82,8 @@ namespace Fidus
 
     /**
      * Build the mesh for the particles at @p centers with @p radii (the
-     * centres in the unit box; along periodic axes any value, taken
-     * modulo 1). Throws std::invalid_argument if a cell stays cut by two
+     * centres in the box; along periodic axes any value, taken modulo the
+     * period). Throws std::invalid_argument if a cell stays cut by two
      * surfaces after the allowed gap levels.
      */
     CutMesh(const std::vector<Point<dim>> &centers,
@@ -128,7 +133,16 @@ namespace Fidus
     /// Refinement flags set for thin gaps, and for matching periodic faces.
     unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
 
+    /// The box's side along axis @p d (its number of unit cells).
+    double
+    side(const unsigned int d) const
+    {
+      return sides[d];
+    }
+
   private:
+    /// The box's sides.
+    std::array<double, dim>   sides;
     Triangulation<dim>        triangulation;
     std::vector<Ball>         balls;
     std::vector<Placement>    placements;

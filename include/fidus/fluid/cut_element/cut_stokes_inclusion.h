@@ -4,20 +4,24 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
+#include <memory>
 #include <vector>
 
 namespace Fidus
 {
   using namespace dealii;
 
+  template <int dim>
+  struct CutFields;
+
   /**
    * A cut finite element solver for rigid particles held in Stokes flow in
-   * the unit box: the exact rigid inclusion (one force- and torque-free
-   * particle in linear shear, ExactRigidInclusion), the reference case of
-   * the converged-answers work, and a few particles pushed by forces or
-   * carried by a shear, for the squeeze of a thin gap; and, with the
-   * particles where the time loop has them, the predictor of 'Fluid/Model
-   * = cut finite element' (doc/cut_element.md).
+   * a box of unit cells (the unit box by default): the exact rigid inclusion
+   * (one force- and torque-free particle in linear shear, ExactRigidInclusion),
+   * the reference case of the converged-answers work, and a few particles
+   * pushed by forces or carried by a shear, for the squeeze of a thin gap; and,
+   * with the particles where the time loop has them, the predictor of
+   * 'Fluid/Model = cut finite element' (doc/cut_element.md).
    *
    * The fictitious-domain predictor of the time loop holds the cut cells
    * rigid, so a particle acts like a body between itself and the staircase
@@ -33,8 +37,11 @@ namespace Fidus
    * part of a cell is (Burman & Hansbo 2014; Guzman & Olshanskii 2018 for
    * Taylor-Hood). Cells inside the particle carry no unknowns
    * (FE_Nothing). The box boundary takes the exact velocity, or, with
-   * sliding walls, the walls y = 0, 1 take the shear's velocity and the
+   * sliding walls, the walls y = 0, H take the shear's velocity and the
    * other axes are periodic (CutMesh matches the faces cell for cell).
+   * Stokes flow is invariant under translation and scaling, so a box of
+   * any size whose sides are whole multiples of the shortest is solved as
+   * this one (CutElementModel scales it).
    *
    * It solves one serial system, on a mesh built for the particles given:
    * with a sparse direct solver in 2D, and iteratively
@@ -47,7 +54,7 @@ namespace Fidus
     /// One rigid particle.
     struct Particle
     {
-      /// Centre, in the unit box (any value along a periodic axis).
+      /// Centre, in the box (any value along a periodic axis).
       Point<dim> center;
       /// Radius.
       double radius = 0.1;
@@ -61,9 +68,9 @@ namespace Fidus
       /// The exact solution around one force-free particle
       /// (ExactRigidInclusion); needs exactly one particle.
       exact_inclusion,
-      /// g (y - 1/2) e_x (at rest for g = 0).
+      /// g (y - H/2) e_x, H the box's height (at rest for g = 0).
       linear_shear,
-      /// g (y - 1/2) e_x on the walls y = 0 and y = 1, periodic along
+      /// g (y - H/2) e_x on the walls y = 0 and y = H, periodic along
       /// every other axis (a particle may cross those faces).
       sliding_walls
     };
@@ -100,11 +107,15 @@ namespace Fidus
       /// The box's velocity.
       Boundary boundary = Boundary::exact_inclusion;
       /// Shear rate g of the far field g (y - y_c) e_x (y_c the particle's
-      /// centre for the exact inclusion, 1/2 otherwise).
+      /// centre for the exact inclusion, H/2 otherwise).
       double shear_rate = 1.;
       /// Fluid viscosity.
       double viscosity = 1.;
-      /// Global refinement of the unit box.
+      /// The box [0, n_0] x ... x [0, n_{dim-1}] as its numbers of unit
+      /// cells along each axis; empty: the unit box (which the exact
+      /// inclusion needs).
+      std::vector<unsigned int> box_cells;
+      /// Global refinement of the box's unit cells.
       unsigned int global_level = 4;
       /// Further levels in a band around the particle surface (the band
       /// reaches band_cells cells of each new level beyond the surface, so
@@ -140,6 +151,9 @@ namespace Fidus
       /// The velocity block's preconditioner in the iterative solver.
       VelocityPreconditioner velocity_preconditioner =
         VelocityPreconditioner::multigrid;
+      /// Keep the mesh, the DoFs and the solution for output
+      /// (Result::fields).
+      bool keep_fields = false;
     };
 
     /// What one solve gives.
@@ -171,7 +185,7 @@ namespace Fidus
       std::vector<SymmetricTensor<2, dim>> stresslets;
       /// Mean pressure over the fluid, and the fluid's volume.
       double fluid_pressure = 0., fluid_volume = 0.;
-      /// For sliding walls: the mean of sigma e_y over the wall y = 1 and
+      /// For sliding walls: the mean of sigma e_y over the wall y = H and
       /// over the wall y = 0, from the consistent residual of the walls'
       /// velocity DoFs, the pressure taken relative to the fluid's mean
       /// (doc/cut_element.md, "Periodic faces"); NaN otherwise. Both equal
@@ -191,6 +205,9 @@ namespace Fidus
       unsigned int n_iterations = 0, n_setup_iterations = 0;
       /// Wall seconds of the whole solve (setup, assembly, factorisation).
       double seconds = 0.;
+      /// With Settings::keep_fields, the mesh, DoFs and solution (else
+      /// null).
+      std::shared_ptr<const CutFields<dim>> fields;
     };
 
     /// Build the mesh, assemble, solve and measure for @p settings.

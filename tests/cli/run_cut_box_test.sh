@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# The cut finite element in any box, and its field output, against the
+# invariances of Stokes flow (tests/cli/check_cut_box.py does the checks):
+#  1. scaled and shifted: the box (-1, 2)-(1, 4), twice the unit box, with
+#     the discs' positions and radii mapped alike, moves them the same way
+#     (positions, velocities, relative viscosity and walls' stress), and
+#     its fields are the unit box's, points mapped, velocities doubled,
+#     pressures equal;
+#  2. periodic doubling: the box (0, 0)-(2, 1) between sliding walls with
+#     the discs and their copies shifted by 1 along x moves every copy as
+#     the unit box moves the original (uniform meshes: see the checker);
+#  3. the walls' velocity in the fields of the scaled box is the shear's,
+#     +-g H/2.
+# Usage: run_cut_box_test.sh path/to/fidus path/to/repo
+. "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
+
+scene() {  # scene NAME LOWER UPPER RADIUS POSITIONS [MINIMUM LEVEL]
+  cat <<PRM
+set Dimension = 2
+set Output directory = $work/$1
+subsection Domain
+  set Lower left = $2
+  set Upper right = $3
+  set Boundary condition = sliding walls
+end
+subsection Fluid
+  set Model = cut finite element
+  set Cut minimum gap = 1e-3
+end
+subsection Particles
+  set Radius = $4
+  set Positions = $5
+end
+subsection Contact
+  set Model = inelastic
+end
+subsection Time stepping
+  set End time = 0.4
+  set Time step = 0.2
+  set Scheme = trapezoidal
+end
+subsection Mesh refinement
+  set Initial global refinement = ${6:-3}
+  set Minimum level = ${6:-3}
+  set Maximum level = ${6:-4}
+end
+subsection Output
+  set Field output interval = 1
+  set Verbosity = quiet
+end
+PRM
+}
+
+scene unit "0, 0" "1, 1" 0.05 "0.98, 0.8; 0.52, 0.5; 0.3, 0.25" > unit.prm
+scene scaled "-1, 2" "1, 4" 0.1 "0.96, 3.6; 0.04, 3; -0.4, 2.5" > scaled.prm
+scene uniform "0, 0" "1, 1" 0.05 "0.7, 0.75; 0.45, 0.5; 0.25, 0.3" 5 \
+  > uniform.prm
+scene doubled "0, 0" "2, 1" 0.05 \
+  "0.7, 0.75; 0.45, 0.5; 0.25, 0.3; 1.7, 0.75; 1.45, 0.5; 1.25, 0.3" 5 \
+  > doubled.prm
+for name in unit scaled uniform doubled; do
+  check "fidus runs $name.prm" "$fidus" $name.prm
+done
+check "the invariances (check_cut_box.py)" \
+  "$python" "$repo/tests/cli/check_cut_box.py" "$work"
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
