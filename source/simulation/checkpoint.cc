@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <fcntl.h>
 #include <fidus/core/input_error.h>
+#include <fidus/core/shear_rate.h>
 #include <fidus/simulation/archive_reader.h>
 #include <fidus/simulation/archive_writer.h>
 #include <fidus/simulation/checkpoint.h>
@@ -20,7 +21,8 @@ namespace Fidus
 
     const std::string magic = "fidus checkpoint";
     // Raised whenever the layout of state.bin changes.
-    constexpr std::uint32_t format_version = 1;
+    // 2: the run state holds the shear rates of its velocities.
+    constexpr std::uint32_t format_version = 2;
 
     const char *const boundary_names[] = {"linear shear",
                                           "sliding walls",
@@ -223,6 +225,50 @@ namespace Fidus
 
 
 
+  void
+  Checkpoint::rescale_to_shear_rate(const Parameters &prm, RunState &state)
+  {
+    // The checkpoint's velocities were solved under the shear rates of the
+    // file that wrote it. A file that changes the rate at the checkpoint's
+    // time (a reversal started from a sheared state) would otherwise move
+    // the particles one step with the old rate's velocities taken as the
+    // new rate's. Stokes flow is linear in the rate, so they are rescaled;
+    // external forces add a part that does not scale, and a velocity
+    // solved at rate 0 has no scale.
+    const ShearRate shear(prm.domain.shear_rate);
+    const auto      rescale = [&](std::vector<RunState::Vec3> &U,
+                             std::vector<RunState::Vec3> &W,
+                             double                      &solved,
+                             const double                 t) {
+      const double g = shear(t);
+      if (g == solved)
+        return;
+      if (solved == 0. || !prm.particles.external_forces.empty())
+        {
+          std::ostringstream m;
+          m << "entry 'Domain/Shear rate' gives " << g << " at t = " << t
+            << ", where the checkpoint's velocities were solved at the rate "
+            << solved << "; allowed: the checkpoint's rate at that time ("
+            << (solved == 0. ? "a velocity solved at rate 0 cannot be "
+                                    "rescaled" :
+                                    "external forces add a part that does not "
+                                    "scale with the rate")
+            << ")";
+          throw InputError(m.str());
+        }
+      for (std::vector<RunState::Vec3> *v : {&U, &W})
+        for (RunState::Vec3 &x : *v)
+          for (double &c : x)
+            c *= g / solved;
+      solved = g;
+    };
+    rescale(state.U, state.W, state.shear_rate, state.time);
+    if (state.have_history)
+      rescale(state.U_old, state.W_old, state.shear_rate_old, state.t_old);
+  }
+
+
+
   Checkpoint::ResumePoint
   Checkpoint::find_and_check(const Parameters &prm, const bool verify_files)
   {
@@ -342,6 +388,7 @@ namespace Fidus
     if (r.state.X.size() != prm.particles.radii.size())
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' is inconsistent (damaged)");
+    rescale_to_shear_rate(prm, r.state);
 
     // The run's CSV files are continued, so they must be there.
     for (const char *csv : {"particles.csv", "statistics.csv"})

@@ -34,6 +34,8 @@ namespace Fidus
     a.put(dt_old);
     a.put(t_old);
     a.put(have_history);
+    a.put(shear_rate);
+    a.put(shear_rate_old);
     a.put(angle);
     a.put(quaternion);
     a.put(X_at_remesh);
@@ -65,6 +67,8 @@ namespace Fidus
     dt_old           = a.get<double>();
     t_old            = a.get<double>();
     have_history     = a.get<bool>();
+    shear_rate       = a.get<double>();
+    shear_rate_old   = a.get<double>();
     angle            = a.get_vector<double>();
     quaternion       = a.get_vector<std::array<double, 4>>();
     X_at_remesh      = a.get_vector<Vec3>();

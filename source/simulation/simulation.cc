@@ -178,7 +178,8 @@ namespace Fidus
             scheme->predict(state, dt, *this, predicted);
             correct(predicted, dt, false);
             advance_particles(dt);
-            record.fluid = scheme->velocities_after_step(state, *this);
+            record.fluid     = scheme->velocities_after_step(state, *this);
+            state.shear_rate = shear(state.time);
             measure_stress(dt);
             write_output(dt);
             if (checkpoint_or_stop())
@@ -229,7 +230,8 @@ namespace Fidus
     // The files are opened once the first solve is done: a run stopped
     // there (a mesh that does not fit in memory, a solve that does not
     // converge) leaves no empty CSV files behind.
-    record.fluid = solve_at_current_positions();
+    record.fluid     = solve_at_current_positions();
+    state.shear_rate = shear(state.time);
     particles_csv =
       std::make_unique<CsvWriter>(prm.output_directory + "/particles.csv",
                                   OutputColumns::particle_columns(),

@@ -297,11 +297,12 @@ namespace Fidus
           turn_orientation(s.quaternion[i], w_corrected[i], dt);
       }
     predicted.middle.clear();
-    s.U_old        = s.U;
-    s.W_old        = s.W;
-    s.dt_old       = dt;
-    s.t_old        = s.time;
-    s.have_history = true;
+    s.U_old          = s.U;
+    s.W_old          = s.W;
+    s.shear_rate_old = s.shear_rate;
+    s.dt_old         = dt;
+    s.t_old          = s.time;
+    s.have_history   = true;
     s.time += dt;
     ++s.step;
 

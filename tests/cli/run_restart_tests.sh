@@ -240,6 +240,31 @@ else
   fail "Scheme = trapezoidal gave the AB2 positions"
 fi
 
+# --- 3c. a shear reversal that starts on resume ----------------------------
+# Sheared at rate 1 to t = 1.1, resumed with 't < 1.1 ? 1 : -1': the
+# checkpoint's velocities were solved at rate 1, the file now gives -1 at
+# t = 1.1; they are rescaled (Stokes flow is linear in the rate), so the
+# run continues as one that reversed at t = 1.1 without stopping (without
+# the rescaling it makes one more step forward: 0.1 U off).
+reversal() {
+  printf 'subsection Domain\n  set Shear rate = %s\nend\n' "$1"
+}
+scene rev_ref 2 "" "$(reversal 't < 1.1 ? 1 : -1')" > rev_ref.prm
+"$fidus" rev_ref.prm > /dev/null 2>&1 || fail "reversal run to t = 2"
+scene rev 1.1 "  set Checkpoint interval = 5" "$(reversal 1)" > rev.prm
+"$fidus" rev.prm > /dev/null 2>&1 || fail "run at rate 1 to t = 1.1"
+scene rev 2 "  set Checkpoint interval = 5" "$(reversal 't < 1.1 ? 1 : -1')" > rev2.prm
+"$fidus" --resume rev2.prm > /dev/null 2>&1 || fail "resume with the reversal to t = 2"
+largest=$(paste -d, rev_ref/particles.csv rev/particles.csv | awk -F, -v nc="$(head -1 rev_ref/particles.csv | awk -F, '{ print NF }')" '
+  NR > 1 { for (c = 4; c <= 9; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
+  END { printf "%.3e", m / 0.05 }')
+if no_duplicate_steps rev && [ "$(rows rev/statistics.csv)" = 21 ] \
+   && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-12) }'; then
+  pass "reversal started on resume: largest |dX|, |dU| over a = $largest <= 1e-12 against the run that reversed without stopping"
+else
+  fail "reversal started on resume differs from the uninterrupted reversal by $largest a"
+fi
+
 # --- 4. bad restart input: one message, exit 1, nothing changed -----------
 fingerprint() { find "$1" -type f | sort | xargs md5sum | md5sum; }
 expect_refusal() {
@@ -271,6 +296,11 @@ scene stop1 3 "" "subsection Fluid
   set Model = undisturbed shear
 end" > fluid.prm
 expect_refusal "another fluid model" stop1 "entry 'Fluid/Model' is 'undisturbed shear'" fluid.prm
+scene rest 0.5 "  set Checkpoint interval = 5" "$(reversal 0)" > rest.prm
+"$fidus" rest.prm > /dev/null 2>&1 || fail "run at rest to t = 0.5"
+scene rest 1 "" "$(reversal 1)" > rest1.prm
+expect_refusal "a rate at the checkpoint's time where its velocities were solved at rate 0" rest \
+  "entry 'Domain/Shear rate' gives 1 at t = 0.5, where the checkpoint's velocities were solved at the rate 0; allowed: the checkpoint's rate" rest1.prm
 cp -r stop1 cut_state && scene cut_state 3 "" > cut_state.prm
 state_file=$(ls -d cut_state/checkpoint-*)/state.bin
 truncate -s -10 "$state_file"

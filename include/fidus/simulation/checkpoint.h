@@ -59,7 +59,8 @@ namespace Fidus
      * Find the newest checkpoint of @p prm's output directory and check it
      * against @p prm: present, complete (lengths and checksums), from the
      * same dimension, particles, box, boundary condition, fluid model and
-     * velocity degree, and the CSV files of the run there. Every problem
+     * velocity degree, and the CSV files of the run there; its velocities
+     * rescaled to @p prm's shear rates (rescale_to_shear_rate). Every problem
      * is an InputError that names the entry or file, the value found and
      * what is allowed. Reads only. With @p verify_files false only
      * state.bin is read (not the mesh and CSV files): for the ranks other
@@ -67,6 +68,17 @@ namespace Fidus
      */
     static ResumePoint
     find_and_check(const Parameters &prm, bool verify_files = true);
+
+    /**
+     * Rescale @p state's velocities (solved at its shear_rate and
+     * shear_rate_old) to @p prm's shear rate at their times, so that a
+     * file that changes the rate at the checkpoint's time (a reversal
+     * from a sheared state) continues as a run that never stopped. An
+     * InputError, naming Domain/Shear rate, where they cannot be rescaled:
+     * solved at rate 0, or with external forces.
+     */
+    static void
+    rescale_to_shear_rate(const Parameters &prm, RunState &state);
 
     /// File name of the mesh inside a checkpoint folder (for
     /// Triangulation::save and load).

@@ -57,6 +57,12 @@ namespace Fidus
     double            dt_old = 0., t_old = 0.;
     bool              have_history = false;
 
+    /// The shear rates U, W and U_old, W_old were solved under. A resumed
+    /// run whose Domain/Shear rate differs at those times rescales them
+    /// (Stokes flow is linear in the rate), so that the schemes, which
+    /// take the rates from the parameter file, see consistent velocities.
+    double shear_rate = 0., shear_rate_old = 0.;
+
     /// Orientation: angle (2D) or unit quaternion (3D).
     std::vector<double>                angle;
     std::vector<std::array<double, 4>> quaternion;
