@@ -223,7 +223,7 @@ namespace Fidus
     exact_inclusion_errors();
 
     /// Hand the mesh, a copy of the DoFs and the fluid unknowns to
-    /// Result::fields (Settings::keep_fields; cut_stokes_solve_fields.cc).
+    /// Result::fields (Settings::keep_fields).
     void
     keep_fields();
 
