@@ -96,6 +96,16 @@ explain_difference() {
   no_duplicate_steps "$2" || echo "  $2/statistics.csv repeats or skips a step"
 }
 
+# largest_change REF OUT FIRST LAST: the largest difference between the
+# two runs' particles.csv over the columns FIRST..LAST, every row, over the
+# radius 0.05.
+largest_change() {
+  paste -d, "$1/particles.csv" "$2/particles.csv" | awk -F, -v first="$3" -v last="$4" \
+    -v nc="$(head -1 "$1/particles.csv" | awk -F, '{ print NF }')" '
+    NR > 1 { for (c = first; c <= last; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
+    END { printf "%.3e", m / 0.05 }'
+}
+
 # Every step once, in order.
 no_duplicate_steps() {
   tail -n +2 "$1/statistics.csv" | cut -d, -f1 |
@@ -168,9 +178,7 @@ fi
 # reproduced with both cores busy); stops at a fixed step are bit-identical
 # on 2 ranks, loaded or not (below). So the signal path is checked to
 # round-off here, and bit-identity on 2 ranks with a deterministic stop.
-largest=$(paste -d, ref2/particles.csv stop2/particles.csv | awk -F, -v nc="$(head -1 ref2/particles.csv | awk -F, '{ print NF }')" '
-  NR > 1 { for (c = 4; c <= 9; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
-  END { printf "%.3e", m / 0.05 }')
+largest=$(largest_change ref2 stop2 4 9)
 if no_duplicate_steps stop2 && [ "$(rows stop2/statistics.csv)" = 31 ] \
    && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-12) }'; then
   pass "2 ranks: stopped by SIGTERM and resumed: largest |dX|, |dU| over a = $largest <= 1e-12 against the uninterrupted run"
@@ -193,10 +201,7 @@ fi
 scene other 3 "  set Checkpoint interval = 4" > other.prm
 status=$(run_and_signal other other.prm INT)
 "${mpirun_cmd[@]}" "$fidus" --resume other.prm > other.resume.stdout 2>&1 || fail "resume 1 -> 2 ranks"
-nc=$(head -1 ref1/particles.csv | awk -F, '{ print NF }')
-largest=$(paste -d, ref1/particles.csv other/particles.csv | awk -F, -v nc="$nc" '
-  NR > 1 { for (c = 4; c <= 5; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
-  END { printf "%.3e", m / 0.05 }')
+largest=$(largest_change ref1 other 4 5)
 if [ "$status" = 130 ] && no_duplicate_steps other && [ "$(rows other/statistics.csv)" = 31 ] \
    && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-4) }'; then
   pass "SIGINT on 1 rank, resumed on 2: largest |dX|/a = $largest <= 1e-4 against the 1-rank run"
@@ -255,9 +260,7 @@ scene rev 1.1 "  set Checkpoint interval = 5" "$(reversal 1)" > rev.prm
 "$fidus" rev.prm > /dev/null 2>&1 || fail "run at rate 1 to t = 1.1"
 scene rev 2 "  set Checkpoint interval = 5" "$(reversal 't < 1.1 ? 1 : -1')" > rev2.prm
 "$fidus" --resume rev2.prm > /dev/null 2>&1 || fail "resume with the reversal to t = 2"
-largest=$(paste -d, rev_ref/particles.csv rev/particles.csv | awk -F, -v nc="$(head -1 rev_ref/particles.csv | awk -F, '{ print NF }')" '
-  NR > 1 { for (c = 4; c <= 9; ++c) { d = $c - $(c + nc); if (d < 0) d = -d; if (d > m) m = d } }
-  END { printf "%.3e", m / 0.05 }')
+largest=$(largest_change rev_ref rev 4 9)
 if no_duplicate_steps rev && [ "$(rows rev/statistics.csv)" = 21 ] \
    && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-12) }'; then
   pass "reversal started on resume: largest |dX|, |dU| over a = $largest <= 1e-12 against the run that reversed without stopping"
