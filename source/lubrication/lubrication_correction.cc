@@ -435,6 +435,73 @@ namespace Fidus::Contact
 
 
 
+  const std::vector<LubricationBond> &
+  LubricationCorrection::find_bonds(const std::vector<Vec3>   &positions,
+                                    const std::vector<double> &radii)
+  {
+    found = LubricationStatistics();
+    bond.clear();
+    collect_bonds(positions, radii, found);
+    return bond;
+  }
+
+
+
+  std::array<double, 12>
+  LubricationCorrection::subgrid_loads(const LubricationBond        &b,
+                                       const std::array<double, 12> &v,
+                                       const bool wall_motion) const
+  {
+    // Both resistances are linear in their coefficient, so the difference
+    // of the true and the resolved loads is the load of the difference.
+    Local f = normal_loads(b, b.r_true - b.r_resolved, v);
+    if (settings.tangential)
+      {
+        const Local t = loads_of_sliding(b,
+                                         b.t_true - b.t_resolved,
+                                         settings.dimension,
+                                         v,
+                                         wall_motion);
+        for (unsigned int k = 0; k < 12; ++k)
+          f[k] += t[k];
+      }
+    return f;
+  }
+
+
+
+  LubricationStatistics
+  LubricationCorrection::measure(const std::vector<Vec3> &u,
+                                 const std::vector<Vec3> &w)
+  {
+    std::vector<double> x(6 * u.size(), 0.);
+    for (std::size_t i = 0; i < u.size(); ++i)
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          x[6 * i + d]     = u[i][d];
+          x[6 * i + 3 + d] = i < w.size() ? w[i][d] : 0.;
+        }
+    for (LubricationBond &b : bond)
+      {
+        const Local v = gather(b, x);
+        b.force       = (b.r_true - b.r_resolved) * closing_speed(b, v);
+        if (!settings.tangential)
+          continue;
+        const Local f = loads_of_sliding(b,
+                                         b.t_true - b.t_resolved,
+                                         settings.dimension,
+                                         v,
+                                         true);
+        for (unsigned int d = 0; d < 3; ++d)
+          b.tangential_force[d] = -f[d];
+        b.torque_i = part(f, 1);
+        b.torque_j = part(f, 3);
+      }
+    return found;
+  }
+
+
+
   namespace
   {
     /// Throws ContactError unless the particle arrays agree in size and hold
@@ -544,30 +611,37 @@ namespace Fidus::Contact
                           settings.tangential_wall_range :
                           h_w;
 
+    // With a resolved gap fraction every range is that fraction of the
+    // bond's smaller radius (the radius for a wall), so the pair search
+    // reaches out to it for the largest radius.
+    const double fraction = settings.resolved_gap_fraction;
+    const double a_max =
+      radii.empty() ? 0. : *std::max_element(radii.begin(), radii.end());
     const double h_pairs =
-      std::max(std::max(h_c, h_f), settings.tangential ? h_t : 0.);
+      fraction > 0. ?
+        fraction * a_max :
+        std::max(std::max(h_c, h_f), settings.tangential ? h_t : 0.);
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, h_pairs, pairs);
     for (const auto &[i, j] : pairs)
       {
         LubricationBond b;
-        b.i          = i;
-        b.j          = j;
-        b.a_i        = radii[i];
-        b.a_j        = radii[j];
-        const Vec3 r = search.separation(positions[i], positions[j]);
-        b.length     = std::sqrt(dot(r, r));
-        b.gap        = b.length - radii[i] - radii[j];
-        if (b.gap >= h_pairs || !(b.length > 0.))
+        b.i                  = i;
+        b.j                  = j;
+        b.a_i                = radii[i];
+        b.a_j                = radii[j];
+        const Vec3 r         = search.separation(positions[i], positions[j]);
+        b.length             = std::sqrt(dot(r, r));
+        b.gap                = b.length - radii[i] - radii[j];
+        const double a_small = std::min(radii[i], radii[j]);
+        const double h_bond  = fraction * a_small;
+        if (b.gap >= (fraction > 0. ? h_bond : h_pairs) || !(b.length > 0.))
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
-        if (fill_resistances(b,
-                             std::min(radii[i], radii[j]),
-                             h_c,
-                             h_f,
-                             h_t,
-                             stat))
+        if (fraction > 0. ?
+              fill_resistances(b, a_small, h_bond, h_bond, h_bond, stat) :
+              fill_resistances(b, a_small, h_c, h_f, h_t, stat))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -583,7 +657,8 @@ namespace Fidus::Contact
           b.a_i    = radii[i];
           b.length = wall.side * (positions[i][wall.axis] - wall.position);
           b.gap    = b.length - radii[i];
-          if (b.gap >= std::max(h_w, h_wt))
+          const double h_bond = fraction * radii[i];
+          if (b.gap >= (fraction > 0. ? h_bond : std::max(h_w, h_wt)))
             continue;
           b.n[wall.axis] = -wall.side;
           // The wall's velocity at the foot of the particle's normal.
@@ -592,7 +667,9 @@ namespace Fidus::Contact
           b.wall_velocity =
             wall_velocity_at ? wall_velocity_at(wall, foot) : wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
-          if (fill_resistances(b, radii[i], h_w, h_w, h_wt, stat))
+          if (fraction > 0. ?
+                fill_resistances(b, radii[i], h_bond, h_bond, h_bond, stat) :
+                fill_resistances(b, radii[i], h_w, h_w, h_wt, stat))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;

@@ -56,23 +56,23 @@ namespace Fidus
 
 
     /// The sub-grid lubrication of Fluid/Lubrication correction (null when
-    /// off); @p resolves_gap_flow: the fluid model resolves the flow of a
-    /// gap down to the cell size.
+    /// off), with what the fluid model @p fluid resolves of a gap.
     template <int dim>
     std::unique_ptr<Contact::LubricationCorrection>
     create_lubrication(const Parameters       &prm,
                        const BoxGeometry<dim> &box,
-                       const bool              resolves_gap_flow)
+                       const FluidModel<dim>  &fluid)
     {
       if (!prm.lubrication.enabled)
         return nullptr;
-      const Contact::LubricationSettings ls =
+      Contact::LubricationSettings ls =
         prm.lubrication.settings(dim,
                                  prm.finest_cell_size(),
                                  prm.fluid.viscosity,
                                  prm.contact.roughness,
                                  prm.contact.drag_coefficient,
-                                 resolves_gap_flow);
+                                 fluid.resolves_gap_flow());
+      ls.resolved_gap_fraction = fluid.resolved_gap_fraction();
       auto lubrication = std::make_unique<Contact::LubricationCorrection>(ls);
       lubrication->set_walls(box.walls);
       lubrication->set_periodicity(box.periods);
@@ -111,8 +111,7 @@ namespace Fidus
     , scheme(create_time_scheme<dim>(parameters, shear, box))
     , contact_settings(contact_settings_of(parameters, dim))
     , projector(contact_settings)
-    , lubrication(
-        create_lubrication<dim>(parameters, box, fluid->resolves_gap_flow()))
+    , lubrication(create_lubrication<dim>(parameters, box, *fluid))
   {
     projector.set_walls(box.walls);
     projector.set_periodicity(box.periods);
@@ -123,6 +122,11 @@ namespace Fidus
         dim,
         box.walls,
         box.periods);
+    if (lubrication && fluid->resolved_gap_fraction() > 0.)
+      {
+        fluid->set_subgrid_lubrication(lubrication.get());
+        lubrication_in_fluid = true;
+      }
     // A contact correction u - u* is a velocity; the force that gives it to
     // an isolated particle is its drag (doc/rheology.md).
     double mean_radius = 0.;
@@ -315,7 +319,17 @@ namespace Fidus
                             std::vector<Vec3>       &U,
                             std::vector<Vec3>       &W)
   {
+    // The sub-grid lubrication solved with the flow sees the walls move
+    // with the rate of this solve, and its bonds' forces are those of the
+    // velocities solved.
+    if (lubrication_in_fluid)
+      lubrication->set_wall_velocity(
+        [this, g](const Contact::Wall &wall, const Contact::Vec3 &point) {
+          return box.wall_velocity(wall, point, g);
+        });
     const Statistics stats = fluid->rigid_velocities(X, g, label, U, W);
+    if (lubrication_in_fluid)
+      fluid_lubrication = lubrication->measure(U, W);
     if (!stats.converged)
       ++state.totals.uzawa_failures;
     return stats;

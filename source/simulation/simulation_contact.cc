@@ -52,6 +52,17 @@ namespace Fidus
     // in a dense 2D suspension their tangential lubrication braked every
     // disc next to them, and the suspension's lubrication stress came out
     // negative (doc/lubrication.md).
+    if (lubrication_in_fluid)
+      {
+        // The fluid solved the sub-grid resistance with the flow, so the
+        // predicted velocities already hold it.
+        u_lubricated       = p.u;
+        w_lubricated       = p.w;
+        record.lubrication = fluid_lubrication;
+        if (!trial && prm.contact.model == ContactModel::none)
+          check_lubricated_gaps(dt);
+        return;
+      }
     const double rate = shear(state.time + 0.5 * dt);
     lubrication->set_wall_velocity(
       [this, rate](const Contact::Wall &wall, const Contact::Vec3 &point) {

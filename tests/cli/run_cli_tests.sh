@@ -48,10 +48,16 @@ expect_error "cut element in the cavity" "Domain/Boundary condition' is not 'lin
   "$(base; cut_fluid ''; printf 'subsection Domain\n  set Boundary condition = cavity\nend\n')"
 expect_error "cut element in a box of uneven sides" "Domain/Upper right' give a side of 1.5 in x, 1.5 times the shortest side 1, with 'Fluid/Model = cut finite element'; allowed: sides that are whole multiples of the shortest" \
   "$(base; cut_fluid ''; printf 'subsection Domain\n  set Upper right = 1.5, 1\nend\n')"
-expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value 0.000000; allowed: a value > 0" \
+expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value '0'; allowed: auto or a value > 0" \
   "$(base; cut_fluid '  set Cut minimum gap = 0')"
-expect_error "cut element with lubrication" "Fluid/Lubrication correction' is true with 'Fluid/Model = cut finite element'; allowed: false" \
-  "$(base; cut_fluid '  set Lubrication correction = true')"
+expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \
+  "$(base; cut_fluid '  set Lubrication correction = true
+  set Lubrication range = 0.5')"
+expect_error "cut element with lubrication in 3D" "Fluid/Lubrication correction' is true with 'Fluid/Model = cut finite element' in 3D; allowed: false in 3D" \
+  "$(base | sed 's/set Dimension *= *2/set Dimension = 3/; s/0.451, 0.51; 0.549, 0.49/0.451, 0.51, 0.5; 0.549, 0.49, 0.5/'; cut_fluid '  set Lubrication correction = true'; printf 'subsection Domain\n  set Lower left = 0, 0, 0\n  set Upper right = 1, 1, 1\nend\n')"
+expect_error "cut element lubricated below the roughness" "Fluid/Cut minimum gap' has the value 0.001 with 'Fluid/Lubrication correction' and 'Contact/Roughness = 0.005'; allowed: a gap above the roughness" \
+  "$(base; cut_fluid '  set Lubrication correction = true
+  set Cut minimum gap = 1e-3')"
 expect_error "overlapping particles" "particles 0 and 1 overlap" \
   "$(base | sed 's/0.451, 0.51; 0.549, 0.49/0.45, 0.5; 0.5, 0.5/')"
 expect_error "overlap across a periodic face" "particles 0 and 1 overlap by 0.06.*(nearest periodic image" \

@@ -9,6 +9,11 @@
 
 namespace Fidus
 {
+  namespace Contact
+  {
+    class LubricationCorrection;
+  }
+
   struct RunState;
   struct RunSummary;
 
@@ -121,6 +126,28 @@ namespace Fidus
     /// resistance.
     virtual bool
     resolves_gap_flow() const = 0;
+
+    /// > 0: the model resolves every gap down to this fraction of the
+    /// smaller radius of a pair (the radius for a wall) and sees the
+    /// narrower ones at that width, so the sub-grid lubrication corrects
+    /// from that gap, bond by bond; 0: it resolves down to a fraction of
+    /// the finest cell (Fluid/Lubrication range and its kin).
+    virtual double
+    resolved_gap_fraction() const
+    {
+      return 0.;
+    }
+
+    /// For a model with resolved_gap_fraction() > 0: the sub-grid
+    /// lubrication whose bonds (LubricationCorrection::find_bonds()) every
+    /// later solve adds to its own system, so that the fluid and the
+    /// sub-grid resistance are solved together. The caller keeps
+    /// @p correction alive and measures the bonds' forces after the solve.
+    virtual void
+    set_subgrid_lubrication(Contact::LubricationCorrection *correction)
+    {
+      (void)correction;
+    }
 
     /// Field output (velocity, pressure, ...) to @p directory, continued
     /// after @p resumed_step when the run resumes (else null). Models with

@@ -45,6 +45,13 @@ namespace Fidus::Contact
     /// bonds reach out to the larger of the two, and a bond between them
     /// corrects only the tangential terms.
     double tangential_wall_range = -1.;
+    /// > 0: the fluid solve resolves every gap down to this fraction of
+    /// the smaller radius of a pair (the radius for a wall) and sees the
+    /// narrower gaps at that width (the cut finite element with its
+    /// minimum gap). Every range above is then this gap, bond by bond:
+    /// what the fluid carries is the resistance of a pair at that gap, and
+    /// the correction adds the rest. 0: the ranges above, in lengths.
+    double resolved_gap_fraction = 0.;
     /// Gaps below roughness * (smaller radius of the pair; the radius for a
     /// wall) count as that gap: the resistance stops growing there and the
     /// contact model takes over.
@@ -316,6 +323,40 @@ namespace Fidus::Contact
             std::vector<Vec3>         &u,
             double                     dt = 0.);
 
+    /**
+     * For a fluid model that solves the sub-grid resistance together with
+     * the flow (the cut finite element, LubricationSettings::
+     * resolved_gap_fraction): the bonds of the particles at @p positions
+     * with @p radii, their resistances filled and their forces zero. The
+     * model adds subgrid_loads() of each to its own system; measure() then
+     * records the forces of the velocities it solved.
+     */
+    const std::vector<LubricationBond> &
+    find_bonds(const std::vector<Vec3>   &positions,
+               const std::vector<double> &radii);
+
+    /**
+     * The loads (F_i, T_i, F_j, T_j) that bond @p b adds at the generalised
+     * velocities @p v = (U_i, w_i, U_j, w_j): the resistance between the
+     * true gap and the resolved one (the normal squeeze, and the
+     * tangential terms with LubricationSettings::tangential). They resist
+     * the relative motion, are linear in @p v and, when @p wall_motion,
+     * include the motion of a wall bond's wall.
+     */
+    std::array<double, 12>
+    subgrid_loads(const LubricationBond        &b,
+                  const std::array<double, 12> &v,
+                  bool                          wall_motion) const;
+
+    /**
+     * Record on the bonds of the last find_bonds() the forces of the
+     * velocities @p u and angular velocities @p w that the fluid model
+     * solved with them (for the stress and the statistics); the
+     * velocities are not changed.
+     */
+    LubricationStatistics
+    measure(const std::vector<Vec3> &u, const std::vector<Vec3> &w);
+
     /// The bonds of the last correction, with their forces.
     const std::vector<LubricationBond> &
     bonds() const
@@ -334,6 +375,9 @@ namespace Fidus::Contact
     rotational_drag(double a) const;
 
   private:
+    /// The statistics of the last find_bonds().
+    LubricationStatistics found;
+
     /// Which resistance of the bonds a system uses.
     enum class Resistance
     {

@@ -191,6 +191,12 @@ namespace Fidus
     std::unique_ptr<GapTimeStep> gap_step;
     /// The sub-grid lubrication (null: Fluid/Lubrication correction off).
     std::unique_ptr<Contact::LubricationCorrection> lubrication;
+    /// Whether the fluid model solves the sub-grid lubrication with the
+    /// flow (FluidModel::resolved_gap_fraction() > 0): the correction
+    /// stage then only passes the velocities on, and each solve measures
+    /// the bonds' forces (the statistics of the last one).
+    bool                           lubrication_in_fluid = false;
+    Contact::LubricationStatistics fluid_lubrication;
     /// Force per unit velocity of a contact correction (Contact/Drag
     /// coefficient, or the isolated particle's drag).
     double contact_drag = 0.;

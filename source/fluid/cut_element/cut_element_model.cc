@@ -4,6 +4,7 @@
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/cut_element/cut_element_model.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/rheology/plane_strain.h>
 #include <fidus/simulation/run_summary.h>
 #include <limits>
@@ -152,7 +153,8 @@ namespace Fidus
     typename Cut::Result r;
     try
       {
-        r = Cut::solve(s);
+        s.couplings = subgrid_couplings(X);
+        r           = Cut::solve(s);
       }
     catch (const std::exception &e)
       {
@@ -252,9 +254,88 @@ namespace Fidus
   bool
   CutElementModel<dim>::resolves_gap_flow() const
   {
-    // It refines every gap down to Fluid/Cut minimum gap; the sub-grid
-    // lubrication is refused with it (Parameters).
-    return false;
+    return true;
+  }
+
+
+
+  template <int dim>
+  void
+  CutElementModel<dim>::set_subgrid_lubrication(
+    Contact::LubricationCorrection *correction)
+  {
+    subgrid = correction;
+  }
+
+
+
+  template <int dim>
+  std::vector<typename CutStokesInclusion<dim>::RigidCoupling>
+  CutElementModel<dim>::subgrid_couplings(const std::vector<Vec3> &X) const
+  {
+    std::vector<typename CutStokesInclusion<dim>::RigidCoupling> couplings;
+    if (subgrid == nullptr)
+      return couplings;
+    // A bond's loads (F_i, T_i, F_j, T_j) are linear in the generalised
+    // velocities (U_i, w_i, U_j, w_j) but for a wall's own motion: the
+    // matrix is minus the loads of unit velocities, the load that of zero
+    // velocities. The solver's rigid unknowns of a particle are U, then
+    // omega (omega_z in 2D), in its units: velocities over the unit,
+    // forces over its power dim - 1, torques over its power dim.
+    constexpr unsigned int        n_rigid = dim * (dim + 1) / 2;
+    const std::array<unsigned, 6> component =
+      dim == 2 ? std::array<unsigned, 6>{{0, 1, 5, 0, 0, 0}} :
+                 std::array<unsigned, 6>{{0, 1, 2, 3, 4, 5}};
+    const auto length_power = [&](const unsigned int k) {
+      return k < dim ? 1 : 0;
+    };
+    const auto load_power = [&](const unsigned int k) {
+      return k < dim ? int(dim) - 1 : int(dim);
+    };
+    for (const Contact::LubricationBond &b :
+         subgrid->find_bonds(X, prm.particles.radii))
+      {
+        typename CutStokesInclusion<dim>::RigidCoupling c;
+        c.owners.push_back(b.i);
+        if (b.j != Contact::LubricationBond::no_particle)
+          c.owners.push_back(b.j);
+        const unsigned int m    = c.owners.size() * n_rigid;
+        const auto         full = [&](const unsigned int k) {
+          return 6 * (k / n_rigid) + component[k % n_rigid];
+        };
+        c.matrix.assign(m, std::vector<double>(m, 0.));
+        c.load.assign(m, 0.);
+        const std::array<double, 12> rest =
+          subgrid->subgrid_loads(b, std::array<double, 12>{}, true);
+        for (unsigned int k = 0; k < m; ++k)
+          c.load[k] = rest[full(k)] / std::pow(unit, load_power(k % n_rigid));
+        for (unsigned int l = 0; l < m; ++l)
+          {
+            std::array<double, 12> v{};
+            v[full(l)] = 1.;
+            const std::array<double, 12> f =
+              subgrid->subgrid_loads(b, v, false);
+            for (unsigned int k = 0; k < m; ++k)
+              c.matrix[k][l] =
+                -f[full(k)] *
+                std::pow(unit,
+                         length_power(l % n_rigid) - load_power(k % n_rigid));
+          }
+        couplings.push_back(std::move(c));
+      }
+    return couplings;
+  }
+
+
+
+  template <int dim>
+  double
+  CutElementModel<dim>::resolved_gap_fraction() const
+  {
+    // The mesh resolves every gap down to Fluid/Cut minimum gap, and the
+    // fluid sees narrower ones at that gap (radii shrunk): that is the
+    // resistance the fluid carries for them.
+    return prm.cut_element.minimum_gap;
   }
 
 

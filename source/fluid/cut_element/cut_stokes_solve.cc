@@ -265,6 +265,12 @@ namespace Fidus
       for (unsigned int k = 0; k < n_rigid; ++k)
         for (unsigned int l = 0; l < n_rigid; ++l)
           dsp.add(n_fluid + p * n_rigid + k, n_fluid + p * n_rigid + l);
+    for (const auto &c : s.couplings)
+      for (const unsigned int p : c.owners)
+        for (const unsigned int q : c.owners)
+          for (unsigned int k = 0; k < n_rigid; ++k)
+            for (unsigned int l = 0; l < n_rigid; ++l)
+              dsp.add(n_fluid + p * n_rigid + k, n_fluid + q * n_rigid + l);
     sparsity.copy_from(dsp);
   }
 
@@ -482,6 +488,33 @@ namespace Fidus
         if (generator->get_surface_quadrature().size() > 0)
           add_nitsche(cell, P, h);
         distribute_cell();
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_couplings()
+  {
+    // The rigid rows read A x = F: the fluid's traction and the external
+    // force. A resistance whose load on the particles is -M x + l joins
+    // them as (A + M) x = F + l.
+    for (const auto &c : s.couplings)
+      {
+        const unsigned int m = c.owners.size() * n_rigid;
+        AssertThrow(c.matrix.size() == m && c.load.size() == m,
+                    ExcMessage("a rigid coupling of the wrong size"));
+        const auto row = [&](const unsigned int k) {
+          return n_fluid + c.owners[k / n_rigid] * n_rigid + k % n_rigid;
+        };
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            AssertThrow(c.owners[k / n_rigid] < particles.size(),
+                        ExcMessage("a rigid coupling of a particle that "
+                                   "is not there"));
+            rhs(row(k)) += c.load[k];
+            for (unsigned int l = 0; l < m; ++l)
+              matrix.add(row(k), row(l), c.matrix[k][l]);
+          }
       }
   }
 

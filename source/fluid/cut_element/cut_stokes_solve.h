@@ -96,6 +96,7 @@ namespace Fidus
       setup_system();
       assemble_cells();
       assemble_ghost_penalties();
+      assemble_couplings();
       solve_linear_system();
       read_rigid_motion();
       measure_solution();
@@ -196,6 +197,11 @@ namespace Fidus
     /// Assemble the ghost penalties on the faces of cut cells.
     void
     assemble_ghost_penalties();
+
+    /// Add Settings::couplings to the rigid rows (matrix and right-hand
+    /// side).
+    void
+    assemble_couplings();
 
     /// Scale the system symmetrically, solve it (directly or
     /// iteratively), measure the residual and distribute the constraints.

@@ -5,6 +5,7 @@
 #include <fidus/core/parameters.h>
 #include <fidus/core/warning_log.h>
 #include <fidus/fluid/cut_element/cut_fields.h>
+#include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/fluid/fluid_model.h>
 #include <fidus/io/field_output.h>
 #include <fidus/simulation/box_geometry.h>
@@ -62,6 +63,13 @@ namespace Fidus
     bool
     resolves_gap_flow() const override;
 
+    double
+    resolved_gap_fraction() const override;
+
+    void
+    set_subgrid_lubrication(
+      Contact::LubricationCorrection *correction) override;
+
     void
     add_to_summary(RunSummary &summary) const override;
 
@@ -83,6 +91,11 @@ namespace Fidus
     std::vector<double>
     fluid_radii(const std::vector<Vec3> &X, const SolveLabel &label) const;
 
+    /// The sub-grid lubrication's bonds at @p X as resistances among the
+    /// solver's rigid unknowns (in its units), none without the correction.
+    std::vector<typename CutStokesInclusion<dim>::RigidCoupling>
+    subgrid_couplings(const std::vector<Vec3> &X) const;
+
     const Parameters       &prm;
     const BoxGeometry<dim> &box;
     dealii::TimerOutput    &timer;
@@ -102,7 +115,10 @@ namespace Fidus
     /// The fields of the last solve (kept with field output only), and
     /// their writer.
     std::shared_ptr<const CutFields<dim>> last_fields;
-    std::unique_ptr<FieldOutput<dim>>     field_output;
+
+    /// The sub-grid lubrication solved with the flow (null: none).
+    Contact::LubricationCorrection   *subgrid = nullptr;
+    std::unique_ptr<FieldOutput<dim>> field_output;
   };
 } // namespace Fidus
 

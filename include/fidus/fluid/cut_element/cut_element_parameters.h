@@ -2,6 +2,7 @@
 #define fidus_fluid_cut_element_cut_element_parameters_h
 
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -33,9 +34,16 @@ namespace Fidus
     void
     check(const Parameters &scene) const;
 
+    /// The minimum gap that 'auto' gives with Fluid/Lubrication correction
+    /// (doc/theory/lubrication.md, "With the cut finite element").
+    static constexpr double corrected_minimum_gap = 0.02;
+
     /// The fluid sees every gap at least this times the smaller radius
     /// (wall gaps: the radius).
     double minimum_gap = 1e-4;
+    /// The Fluid/Lubrication ranges that are not auto (with the cut
+    /// element the correction takes its ranges from minimum_gap).
+    std::vector<std::string> ranges_set;
     /// Cells across a thin gap.
     double gap_cells = 2.;
     /// auto (or automatic), direct or iterative.

@@ -98,9 +98,29 @@ namespace Fidus
       multigrid
     };
 
+    /**
+     * A resistance among the rigid unknowns of one or two particles, added
+     * to the system: the sub-grid lubrication of a gap narrower than the
+     * one the fluid sees (Fluid/Lubrication correction). Its unknowns are
+     * those of each particle of @p owners in turn: U, then omega (omega_z
+     * in 2D). The particles' rows then balance the fluid's traction, the
+     * external force and the resistance's load -matrix x + load (@p load:
+     * that of a moving wall at rest particles).
+     */
+    struct RigidCoupling
+    {
+      std::vector<unsigned int> owners;
+      /// Square, of size owners.size() times the rigid unknowns per
+      /// particle (dim (dim + 1) / 2).
+      std::vector<std::vector<double>> matrix;
+      std::vector<double>              load;
+    };
+
     /// The scene and the discretisation's parameters.
     struct Settings
     {
+      /// Resistances among the rigid unknowns (none by default).
+      std::vector<RigidCoupling> couplings;
       /// The particles (they must not overlap, nor touch the box's walls;
       /// along periodic axes the gaps are taken to the nearest image).
       std::vector<Particle> particles;
