@@ -126,8 +126,8 @@ namespace Fidus
     if (!scene.lubrication.enabled)
       return;
     // The coupling is written for both dimensions, but only the 2D one has
-    // been measured against resolved gaps (a 3D pair at 0.02 a did not
-    // finish its first solve in 20 minutes at level 4).
+    // been measured against resolved gaps (a 3D pair at 0.02 a, level 4,
+    // did not finish its first solve in an hour on a loaded machine).
     if (scene.dimension == 3)
       throw InputError("entry 'Fluid/Lubrication correction' is true with " +
                        model +
