@@ -140,6 +140,16 @@ namespace Fidus::Contact
         }
       return f;
     }
+    /// Keep the tangential loads @p f of bond @p b on it: the force on j,
+    /// or on the wall (the opposite of the one on i), and the torques.
+    void
+    record_sliding_loads(LubricationBond &b, const Local &f)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        b.tangential_force[d] = -f[d];
+      b.torque_i = part(f, 1);
+      b.torque_j = part(f, 3);
+    }
   } // namespace
 
 
@@ -492,10 +502,7 @@ namespace Fidus::Contact
                                          settings.dimension,
                                          v,
                                          true);
-        for (unsigned int d = 0; d < 3; ++d)
-          b.tangential_force[d] = -f[d];
-        b.torque_i = part(f, 1);
-        b.torque_j = part(f, 3);
+        record_sliding_loads(b, f);
       }
     return found;
   }
@@ -808,12 +815,7 @@ namespace Fidus::Contact
           loads_of_sliding(b, b.t_resolved, dim, v_star, true);
         for (unsigned int k = 0; k < 12; ++k)
           f[k] -= f_res[k];
-        // The force on j, or on the wall: the opposite of the one on i.
-        b.tangential_force = part(f, 0);
-        for (double &c : b.tangential_force)
-          c = -c;
-        b.torque_i = part(f, 1);
-        b.torque_j = part(f, 3);
+        record_sliding_loads(b, f);
       }
   }
 
