@@ -69,18 +69,16 @@ namespace Fidus::Contact
                                const double             rhs,
                                const std::vector<Vec3> &u) const
   {
-    // Most rows of a packing are candidates that stay open. Their exact
-    // local solution is zero when they carry no impulse (a row without a
-    // normal impulse has no tangential one) and their normal velocity
-    // keeps them open, and the normal velocity needs neither the rotations
-    // (they move a contact point tangentially) nor the tangential part.
-    const Vec3 &t = lambda_t_[k];
-    if (glued_[k] || lambda_[k] != 0. || t[0] != 0. || t[1] != 0. || t[2] != 0.)
-      return false;
-    const Vec3 &e = e_[k], &ua = u[a_[k]], &ub = u[b_[k]], &s = surface_a_[k];
-    return rhs + (ub[0] - ua[0] - s[0]) * e[0] + (ub[1] - ua[1] - s[1]) * e[1] +
-             (ub[2] - ua[2] - s[2]) * e[2] >=
-           0.;
+    // Most rows of a packing are candidates that stay open; their exact
+    // local solution is zero.
+    return Coulomb::stays_open(glued_[k] != 0,
+                               lambda_[k],
+                               lambda_t_[k],
+                               e_[k],
+                               u[a_[k]],
+                               u[b_[k]],
+                               surface_a_[k],
+                               rhs);
   }
 
 
@@ -122,50 +120,108 @@ namespace Fidus::Contact
 
 
   double
-  ConstraintSystem::frictional_sweep(const std::vector<std::uint32_t> *rows,
-                                     const bool                        forward,
-                                     const double                      mu,
-                                     const std::vector<double>        &w_t,
-                                     const std::vector<double>        &inv_w,
-                                     const std::vector<double>        &inv_j,
-                                     std::vector<Vec3>                &u,
-                                     std::vector<Vec3>                &w)
+  ConstraintSystem::frictional_sweep(const bool                 forward,
+                                     const double               mu,
+                                     const std::vector<double> &w_t,
+                                     const std::vector<double> &inv_w,
+                                     const std::vector<double> &inv_j,
+                                     std::vector<Vec3>         &u,
+                                     std::vector<Vec3>         &w)
   {
-    const Vec3        zero{{0., 0., 0.}};
-    const std::size_t count  = rows ? rows->size() : size();
+    const std::size_t count  = size();
     double            change = 0.;
     for (std::size_t i = 0; i < count; ++i)
       {
-        const std::size_t j = forward ? i : count - 1 - i;
-        const std::size_t k = rows ? (*rows)[j] : j;
+        const std::size_t k = forward ? i : count - 1 - i;
+        // Most rows stay open: test them on the arrays before gathering
+        // the rest of the row.
         if (stays_open(k, rhs_[k], u))
           continue;
-        const Impulse old{lambda_[k], lambda_t_[k]};
-        Impulse       next;
-        local_coulomb(k, mu, diag_[k], w_t[k], rhs_[k], u, w, next.n, next.t);
-        Vec3 dt_change;
-        for (unsigned d = 0; d < 3; ++d)
-          dt_change[d] = next.t[d] - old.t[d];
-        double dn_change = next.n - old.n;
-        change           = std::max(
-          {change, diag_[k] * std::abs(dn_change), w_t[k] * norm(dt_change)});
-        // A convex combination of two impulses in the cone stays in it.
-        if (relaxation_ < 1.)
+        change = std::max(change,
+                          sweep_contact(sweep_row(k, w_t),
+                                        mu,
+                                        relaxation_,
+                                        inv_w,
+                                        inv_j,
+                                        u,
+                                        w,
+                                        lambda_[k],
+                                        lambda_t_[k]));
+      }
+    return change;
+  }
+
+
+
+  Coulomb::SweepRow
+  ConstraintSystem::sweep_row(const std::size_t          k,
+                              const std::vector<double> &w_t) const
+  {
+    return SweepRow{a_[k],
+                    b_[k],
+                    glued_[k] != 0,
+                    lever_a_[k],
+                    lever_b_[k],
+                    rhs_[k],
+                    diag_[k],
+                    w_t[k],
+                    e_[k],
+                    surface_a_[k]};
+  }
+
+
+
+  double
+  ConstraintSystem::active_frictional_sweeps(
+    const std::vector<std::uint32_t> &rows,
+    const double                      mu,
+    const std::vector<double>        &w_t,
+    const std::vector<double>        &inv_w,
+    const std::vector<double>        &inv_j,
+    const double                      dt,
+    const double                      tolerance,
+    std::vector<Vec3>                &u,
+    std::vector<Vec3>                &w)
+  {
+    // The rows with an impulse are an eighth of a dense packing's rows,
+    // scattered over arrays too large for the cache: sweeping them where
+    // they lie costs a cache miss per array and row. They are gathered once
+    // here and swept contiguously (doc/history/contact.md).
+    const std::size_t     count = rows.size();
+    std::vector<SweepRow> packed(count);
+    std::vector<double>   lambda_n(count);
+    std::vector<Vec3>     lambda_t(count);
+    for (std::size_t i = 0; i < count; ++i)
+      {
+        packed[i]   = sweep_row(rows[i], w_t);
+        lambda_n[i] = lambda_[rows[i]];
+        lambda_t[i] = lambda_t_[rows[i]];
+      }
+    double change = 0.;
+    for (unsigned int j = 0; j < active_sweeps; ++j)
+      {
+        change = 0.;
+        for (std::size_t i = 0; i < count; ++i)
           {
-            dn_change *= relaxation_;
-            next.n = old.n + dn_change;
-            for (unsigned d = 0; d < 3; ++d)
-              {
-                dt_change[d] *= relaxation_;
-                next.t[d] = old.t[d] + dt_change[d];
-              }
+            const std::size_t r = (j % 2 == 0) ? i : count - 1 - i;
+            change              = std::max(change,
+                              sweep_contact(packed[r],
+                                            mu,
+                                            relaxation_,
+                                            inv_w,
+                                            inv_j,
+                                            u,
+                                            w,
+                                            lambda_n[r],
+                                            lambda_t[r]));
           }
-        if (dn_change != 0. || dt_change != zero)
-          {
-            lambda_[k]   = next.n;
-            lambda_t_[k] = next.t;
-            add_impulse(k, dn_change, dt_change, inv_w, inv_j, u, w);
-          }
+        if (change * dt <= tolerance)
+          break;
+      }
+    for (std::size_t i = 0; i < count; ++i)
+      {
+        lambda_[rows[i]]   = lambda_n[i];
+        lambda_t_[rows[i]] = lambda_t[i];
       }
     return change;
   }
@@ -328,7 +384,7 @@ namespace Fidus::Contact
         // while it is above the tolerance, it stands for the residual,
         // whose evaluation costs most of a sweep.
         const double change =
-          frictional_sweep(nullptr, forward, mu, w_t, inv_w, inv_j, u, w);
+          frictional_sweep(forward, mu, w_t, inv_w, inv_j, u, w);
         // Most rows of a dense packing are candidates that stay open; the
         // slow error is in the rows that carry an impulse. Sweeping those
         // alone until their own change is small costs a fraction of a full
@@ -338,18 +394,15 @@ namespace Fidus::Contact
           if (glued_[k] || lambda_[k] != 0.)
             active.push_back(k);
         if (change * dt > tolerance && 4 * active.size() < m)
-          for (unsigned int j = 0; j < active_sweeps; ++j)
-            if (frictional_sweep(&active,
-                                 j % 2 == 0,
-                                 mu,
-                                 w_t,
-                                 inv_w,
-                                 inv_j,
-                                 u,
-                                 w) *
-                  dt <=
-                tolerance)
-              break;
+          active_frictional_sweeps(active,
+                                   mu,
+                                   w_t,
+                                   inv_w,
+                                   inv_j,
+                                   dt,
+                                   tolerance,
+                                   u,
+                                   w);
         ++result.iterations;
         const bool subspace_due =
           subspace && result.iterations % sweeps_per_subspace_step == 0;

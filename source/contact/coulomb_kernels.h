@@ -83,6 +83,29 @@ namespace Fidus::Contact::Coulomb
     return r;
   }
 
+  /**
+   * Whether a contact carries no impulse and keeps none: its exact local
+   * solution is then zero. The normal velocity needs neither the rotations
+   * (they move a contact point tangentially) nor the tangential part.
+   */
+  inline bool
+  stays_open(const bool   glued,
+             const double lambda_n,
+             const Vec3  &lambda_t,
+             const Vec3  &e,
+             const Vec3  &ua,
+             const Vec3  &ub,
+             const Vec3  &s,
+             const double rhs)
+  {
+    const Vec3 &t = lambda_t;
+    if (glued || lambda_n != 0. || t[0] != 0. || t[1] != 0. || t[2] != 0.)
+      return false;
+    return rhs + (ub[0] - ua[0] - s[0]) * e[0] + (ub[1] - ua[1] - s[1]) * e[1] +
+             (ub[2] - ua[2] - s[2]) * e[2] >=
+           0.;
+  }
+
   /// Add the impulse change (dn e + dt) on the second body, its opposite
   /// on the first, to the velocities and angular velocities.
   inline void
@@ -111,6 +134,100 @@ namespace Fidus::Contact::Coulomb
         w[a][d] -= lever_a * inv_j[a] * ext[d];
         w[b][d] -= lever_b * inv_j[b] * ext[d];
       }
+  }
+
+  /// One contact's data for the Gauss-Seidel sweeps, stored contiguously.
+  struct SweepRow
+  {
+    std::uint32_t a;       ///< first body
+    std::uint32_t b;       ///< second body
+    bool          glued;   ///< glued: any normal impulse
+    double        lever_a; ///< a's contact point at +lever_a e
+    double        lever_b; ///< b's contact point at -lever_b e
+    double        rhs;     ///< gap term (D - offset) / dt
+    double        w_n;     ///< normal Delassus entry
+    double        w_t;     ///< tangential Delassus entry
+    Vec3          e;       ///< unit normal from a to b
+    Vec3          surface; ///< a's surface velocity (a wall)
+  };
+
+  /**
+   * One contact's step of a frictional Gauss-Seidel sweep: its exact local
+   * Coulomb solution with the others frozen (only the fraction
+   * @p relaxation of the way when that is below 1), the impulse
+   * (@p lambda_n, @p lambda_t) and the velocities updated. Returns the
+   * unrelaxed change max(W_n |d lambda_n|, W_t |d lambda_t|).
+   */
+  inline double
+  sweep_contact(const SweepRow            &row,
+                const double               mu,
+                const double               relaxation,
+                const std::vector<double> &inv_w,
+                const std::vector<double> &inv_j,
+                std::vector<Vec3>         &u,
+                std::vector<Vec3>         &w,
+                double                    &lambda_n,
+                Vec3                      &lambda_t)
+  {
+    if (stays_open(row.glued,
+                   lambda_n,
+                   lambda_t,
+                   row.e,
+                   u[row.a],
+                   u[row.b],
+                   row.surface,
+                   row.rhs))
+      return 0.;
+    const Impulse old{lambda_n, lambda_t};
+    double        c;
+    Vec3          v_t;
+    contact_velocity(u,
+                     w,
+                     row.a,
+                     row.b,
+                     row.e,
+                     row.lever_a,
+                     row.lever_b,
+                     row.surface,
+                     row.rhs,
+                     c,
+                     v_t);
+    Impulse next = local_solution(c, v_t, old, row.w_n, row.w_t, row.glued, mu);
+    Vec3    dt_change;
+    for (unsigned d = 0; d < 3; ++d)
+      dt_change[d] = next.t[d] - old.t[d];
+    double       dn_change = next.n - old.n;
+    const double change =
+      std::max(row.w_n * std::abs(dn_change), row.w_t * norm(dt_change));
+    // A convex combination of two impulses in the cone stays in it.
+    if (relaxation < 1.)
+      {
+        dn_change *= relaxation;
+        next.n = old.n + dn_change;
+        for (unsigned d = 0; d < 3; ++d)
+          {
+            dt_change[d] *= relaxation;
+            next.t[d] = old.t[d] + dt_change[d];
+          }
+      }
+    if (dn_change != 0. || dt_change[0] != 0. || dt_change[1] != 0. ||
+        dt_change[2] != 0.)
+      {
+        lambda_n = next.n;
+        lambda_t = next.t;
+        scatter(u,
+                w,
+                row.a,
+                row.b,
+                row.e,
+                row.lever_a,
+                row.lever_b,
+                dn_change,
+                dt_change,
+                inv_w,
+                inv_j);
+      }
+    return change;
   }
 } // namespace Fidus::Contact::Coulomb
 

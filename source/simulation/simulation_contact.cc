@@ -345,10 +345,22 @@ namespace Fidus
             << (low ? box.lo[d] : box.hi[d]) << " at step " << s.step
             << ", t = " << s.time << " (centre " << s.X[i][d] << ", radius "
             << prm.particles.radii[i] << "): ";
+          const ContactModel model = prm.contact.model;
           if (box.is_wall_axis[d])
-            m << "it crossed a wall (Contact/Walls = "
-              << (prm.contact.walls ? "true" : "false") << ", Contact/Model "
-              << (prm.contact.model == ContactModel::none ? "none" : "") << ")";
+            {
+              m << "it crossed a wall (Contact/Walls = "
+                << (prm.contact.walls ? "true" : "false")
+                << ", Contact/Model = "
+                << (model == ContactModel::none      ? "none" :
+                    model == ContactModel::inelastic ? "inelastic" :
+                                                       "gluey")
+                << ")";
+              // With walls in the contact model only a projection that
+              // stopped short of its tolerance lets a particle through.
+              if (prm.contact.walls && model != ContactModel::none)
+                m << "; a contact projection that did not converge (see the "
+                     "warnings above) leaves overlaps";
+            }
           else
             m << "it left through an in/outflow face";
           m << "; output up to step " << s.step - 1 << " is written";

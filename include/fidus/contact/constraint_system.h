@@ -7,6 +7,11 @@
 
 namespace Fidus::Contact
 {
+  namespace Coulomb
+  {
+    struct SweepRow;
+  }
+
   /**
    * The linearised constraints of one projection and the solvers of its dual
    * problem (numerics section 3).
@@ -305,23 +310,42 @@ namespace Fidus::Contact
                   std::vector<Vec3>         &u);
 
     /**
-     * One Gauss-Seidel sweep of the frictional problem over the rows
-     * listed in @p rows (all rows when null), in order or backwards: each
-     * contact takes its exact local Coulomb solution with the others
-     * frozen (moved only the fraction relaxation_ towards it when that is
-     * below 1), and @p u, @p w follow. Returns the largest local change,
-     * max(W_n |d lambda_n|, W_t |d lambda_t|), of the unrelaxed update;
-     * @p w_t holds the W_t.
+     * One Gauss-Seidel sweep of the frictional problem over all rows, in
+     * order or backwards: each contact takes its exact local Coulomb
+     * solution with the others frozen (moved only the fraction
+     * relaxation_ towards it when that is below 1), and @p u, @p w follow.
+     * Returns the largest local change, max(W_n |d lambda_n|,
+     * W_t |d lambda_t|), of the unrelaxed update; @p w_t holds the W_t.
      */
     double
-    frictional_sweep(const std::vector<std::uint32_t> *rows,
-                     bool                              forward,
-                     double                            mu,
-                     const std::vector<double>        &w_t,
-                     const std::vector<double>        &inv_w,
-                     const std::vector<double>        &inv_j,
-                     std::vector<Vec3>                &u,
-                     std::vector<Vec3>                &w);
+    frictional_sweep(bool                       forward,
+                     double                     mu,
+                     const std::vector<double> &w_t,
+                     const std::vector<double> &inv_w,
+                     const std::vector<double> &inv_j,
+                     std::vector<Vec3>         &u,
+                     std::vector<Vec3>         &w);
+
+    /**
+     * Up to active_sweeps sweeps, alternating in direction, over the rows
+     * listed in @p rows alone (gathered contiguously first), stopped when
+     * a sweep's largest change times @p dt is at most @p tolerance.
+     * Returns the last sweep's largest change.
+     */
+    double
+    active_frictional_sweeps(const std::vector<std::uint32_t> &rows,
+                             double                            mu,
+                             const std::vector<double>        &w_t,
+                             const std::vector<double>        &inv_w,
+                             const std::vector<double>        &inv_j,
+                             double                            dt,
+                             double                            tolerance,
+                             std::vector<Vec3>                &u,
+                             std::vector<Vec3>                &w);
+
+    /// Row @p k's data for the sweeps (coulomb_kernels.h), W_t from @p w_t.
+    Coulomb::SweepRow
+    sweep_row(std::size_t k, const std::vector<double> &w_t) const;
 
     /// Whether row @p k carries no impulse and its exact local solution,
     /// with normal right-hand side @p rhs, leaves it so (velocities @p u).
