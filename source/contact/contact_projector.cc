@@ -392,9 +392,7 @@ namespace Fidus::Contact
     const unsigned      dim   = settings.dimension;
     const std::uint32_t n     = static_cast<std::uint32_t>(positions.size());
     const bool          gluey = (settings.model == Model::gluey);
-    const double        allowed_overlap = settings.overlap_tolerance > 0. ?
-                                            settings.overlap_tolerance :
-                                            10. * settings.tolerance;
+    const double        allowed_overlap = tolerated_overlap();
 
     system.clear();
     // Rough particles touch at a gap of their contact distance: search
@@ -820,8 +818,20 @@ namespace Fidus::Contact
     statistics.iterations     = result.iterations;
     statistics.residual       = result.residual;
     statistics.converged      = result.converged;
+    carried_overlap           = result.converged ? 0. : 2. * result.residual;
     statistics.alert_distance = d_a;
     return statistics;
+  }
+
+
+
+  double
+  ContactProjector::tolerated_overlap() const
+  {
+    const double base = settings.overlap_tolerance > 0. ?
+                          settings.overlap_tolerance :
+                          10. * settings.tolerance;
+    return std::max(base, carried_overlap);
   }
 
 

@@ -331,8 +331,10 @@ namespace Fidus
   void
   Simulation<dim>::check_inside_box(const unsigned int i) const
   {
-    const RunState &s   = state;
-    const double    tol = contact_settings.overlap_tolerance;
+    const RunState &s = state;
+    // After a projection that did not converge (a warning), what it left
+    // is tolerated as in the next projection's input.
+    const double tol = projector.tolerated_overlap();
     for (unsigned int d = 0; d < dim; ++d)
       if (!box.is_periodic[d] &&
           (s.X[i][d] - prm.particles.radii[i] < box.lo[d] - tol ||

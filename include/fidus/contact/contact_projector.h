@@ -199,6 +199,15 @@ namespace Fidus::Contact
     unsigned int
     n_glued() const;
 
+    /**
+     * The overlap the next projection accepts in its input: the settings'
+     * overlap tolerance, or, after a projection that stopped short of its
+     * tolerance, twice that projection's residual, so that the next one
+     * can push apart what it left instead of stopping the run.
+     */
+    double
+    tolerated_overlap() const;
+
     /// Number of glued contacts that involve each particle (for output).
     std::vector<unsigned int>
     glued_count_per_particle(std::size_t n_particles) const;
@@ -314,7 +323,10 @@ namespace Fidus::Contact
              double                     d_a,
              const std::vector<Vec3>   *glued_normal_positions);
 
-    Settings            settings;
+    Settings settings;
+    /// Twice the residual of the last projection if it did not converge,
+    /// else 0 (tolerated_overlap()).
+    double              carried_overlap = 0.;
     std::vector<Wall>   walls;
     std::vector<double> weights;
     std::vector<double> rotational_weights;
