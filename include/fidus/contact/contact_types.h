@@ -73,7 +73,9 @@ namespace Fidus::Contact
     double glue_snap = 1e-12;
     /// Initial overlaps (negative gaps) smaller than this are accepted; a
     /// value <= 0 means 10 * tolerance. After a converged projection the true
-    /// gap is >= -tolerance, so a larger overlap means the input is broken.
+    /// gap is >= -tolerance, so a larger overlap means the input is broken;
+    /// after one that did not converge, twice its residual is accepted
+    /// (ContactProjector::tolerated_overlap()).
     double overlap_tolerance = 0.;
     /// The alert distance is at least alert_factor * dt * max|u*| (values
     /// below 2 are raised to 2); see ContactProjector::project().
