@@ -27,20 +27,23 @@ run(const double x, const double y, const unsigned int level)
 {
   std::ostringstream prm;
   prm.precision(17);
-  prm << "set Dimension = 2\nset Output directory = run_output\n"
-      << "subsection Domain\n"
-      << "  set Boundary condition = exact rigid inclusion\nend\n"
-      << "subsection Fluid\n  set Rigidity tolerance = 5e-4\n"
-         "  set Rigidity measure = box\n"
-      << "  subsection Linear solver\n    set Tolerance = 1e-8\n  end\nend\n"
-      << "subsection Particles\n  set Radius = 0.05\n"
-      << "  set Positions = " << x << ", " << y << "\nend\n"
-      << "subsection Time stepping\n  set End time = 0\nend\n"
-      << "subsection Mesh refinement\n"
-      << "  set Initial global refinement = 3\n"
-      << "  set Minimum level = 3\n"
-      << "  set Maximum level = " << level << "\nend\n"
-      << "subsection Output\n  set Verbosity = quiet\nend\n";
+  prm
+    << "set Dimension = 2\nset Output directory = run_output\n"
+    << "subsection Domain\n"
+    << "  set Boundary condition = exact rigid inclusion\nend\n"
+    // Solid retraction 0: the seed's model, in which the bounds below were
+    // measured.
+    << "subsection Fluid\n  set Solid retraction = 0\n  set Rigidity tolerance = 5e-4\n"
+       "  set Rigidity measure = box\n"
+    << "  subsection Linear solver\n    set Tolerance = 1e-8\n  end\nend\n"
+    << "subsection Particles\n  set Radius = 0.05\n"
+    << "  set Positions = " << x << ", " << y << "\nend\n"
+    << "subsection Time stepping\n  set End time = 0\nend\n"
+    << "subsection Mesh refinement\n"
+    << "  set Initial global refinement = 3\n"
+    << "  set Minimum level = 3\n"
+    << "  set Maximum level = " << level << "\nend\n"
+    << "subsection Output\n  set Verbosity = quiet\nend\n";
   return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
 }
 

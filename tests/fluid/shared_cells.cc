@@ -34,18 +34,22 @@ namespace
   run(const std::string &shared_cells)
   {
     std::ostringstream prm;
-    prm << std::setprecision(17) << "set Dimension = 2\n"
-        << "set Output directory = output_" << shared_cells << "\n"
-        << "subsection Fluid\n  set Rigidity tolerance = 1e-3\n"
-           "  set Rigidity measure = box\n"
-        << "  set Maximum Uzawa iterations = 30\n"
-        << "  set Shared cells = " << shared_cells << "\nend\n"
-        << "subsection Particles\n  set Radius = " << a
-        << "\n  set Positions = " << 0.5 - h << ", " << 0.5 - h << "; "
-        << 0.5 + h << ", " << 0.5 + h << "\nend\n"
-        << "subsection Time stepping\n  set End time = 0\nend\n"
-        << "subsection Mesh refinement\n  set Maximum level = 6\nend\n"
-        << "subsection Output\n  set Verbosity = quiet\nend\n";
+    prm
+      << std::setprecision(17) << "set Dimension = 2\n"
+      << "set Output directory = output_" << shared_cells
+      << "\n"
+      // Solid retraction 0: the seed's model, in which the bounds below were
+      // measured.
+      << "subsection Fluid\n  set Solid retraction = 0\n  set Rigidity tolerance = 1e-3\n"
+         "  set Rigidity measure = box\n"
+      << "  set Maximum Uzawa iterations = 30\n"
+      << "  set Shared cells = " << shared_cells << "\nend\n"
+      << "subsection Particles\n  set Radius = " << a
+      << "\n  set Positions = " << 0.5 - h << ", " << 0.5 - h << "; " << 0.5 + h
+      << ", " << 0.5 + h << "\nend\n"
+      << "subsection Time stepping\n  set End time = 0\nend\n"
+      << "subsection Mesh refinement\n  set Maximum level = 6\nend\n"
+      << "subsection Output\n  set Verbosity = quiet\nend\n";
     return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
   }
 

@@ -78,23 +78,27 @@ namespace
   {
     std::ostringstream prm;
     prm.precision(17);
-    prm << "set Dimension = 2\nset Output directory = run_output\n"
-        << "subsection Domain\n"
-        << "  set Boundary condition = exact rigid inclusion\nend\n"
-        << "subsection Fluid\n  set Solid smoothing = " << smoothing << "\n"
-        << "  set Maximum Uzawa iterations = 1\n"
-        << "  set Rigidity tolerance = 1e-9\n"
-           "  set Rigidity measure = box\n"
-        << "  subsection Linear solver\n    set Tolerance = 1e-11\n  end\n"
-        << "end\n"
-        << "subsection Particles\n  set Radius = 0.05\n"
-        << "  set Positions = " << x[0] << ", " << x[1] << "\nend\n"
-        << "subsection Time stepping\n  set End time = 0\nend\n"
-        << "subsection Mesh refinement\n"
-        << "  set Initial global refinement = 3\n"
-        << "  set Minimum level = 3\n"
-        << "  set Maximum level = 6\nend\n"
-        << "subsection Output\n  set Verbosity = quiet\nend\n";
+    prm
+      << "set Dimension = 2\nset Output directory = run_output\n"
+      << "subsection Domain\n"
+      << "  set Boundary condition = exact rigid inclusion\nend\n"
+      // Solid retraction 0: the seed's model, in which the bounds below were
+      // measured.
+      << "subsection Fluid\n  set Solid retraction = 0\n  set Solid smoothing = "
+      << smoothing << "\n"
+      << "  set Maximum Uzawa iterations = 1\n"
+      << "  set Rigidity tolerance = 1e-9\n"
+         "  set Rigidity measure = box\n"
+      << "  subsection Linear solver\n    set Tolerance = 1e-11\n  end\n"
+      << "end\n"
+      << "subsection Particles\n  set Radius = 0.05\n"
+      << "  set Positions = " << x[0] << ", " << x[1] << "\nend\n"
+      << "subsection Time stepping\n  set End time = 0\nend\n"
+      << "subsection Mesh refinement\n"
+      << "  set Initial global refinement = 3\n"
+      << "  set Minimum level = 3\n"
+      << "  set Maximum level = 6\nend\n"
+      << "subsection Output\n  set Verbosity = quiet\nend\n";
     Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
     return csv_column("run_output/particles.csv", "omega_z").back();
   }

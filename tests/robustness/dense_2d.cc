@@ -36,7 +36,10 @@ run(const std::string &fluid,
       << "set Output directory = dense_" << model << "_"
       << (fluid[0] == 'u' ? "undisturbed" : "fd") << "\n"
       << "subsection Domain\n  set Boundary condition = sliding walls\nend\n"
-      << "subsection Fluid\n  set Model = " << fluid << "\n"
+      // Solid retraction 0: the seed's model, in which the bounds below were
+      // measured.
+      << "subsection Fluid\n  set Solid retraction = 0\n  set Model = " << fluid
+      << "\n"
       << "  set Rigidity tolerance = 1e-3\n"
          "  set Rigidity measure = box\n"
       << "  set Maximum Uzawa iterations = 3\n"
