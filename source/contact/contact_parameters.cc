@@ -36,6 +36,16 @@ namespace Fidus
                         "projected gradient|accelerated projected "
                         "gradient|projected Gauss-Seidel"),
                       "Algorithm for the multipliers of the projection.");
+    prm.declare_entry(
+      "Maximum iterations",
+      "100000",
+      Patterns::Integer(1),
+      "Iterations of the dual solver (sweeps of Gauss-Seidel) after which "
+      "a projection that has not reached 'Tolerance' stops. The run goes "
+      "on: the overlap it leaves, at most its residual, is accepted and "
+      "pushed apart by the next projection, and the step is counted in "
+      "the run's contact failures (doc/theory/contact.md). Needs a "
+      "contact model other than 'none'; >= 1.");
     prm.declare_entry("Alert distance",
                       "0.1",
                       Patterns::Double(0.),
@@ -98,6 +108,7 @@ namespace Fidus
       walls                = prm.get_bool("Walls");
       tolerance            = prm.get_double("Tolerance");
       dual_solver          = prm.get("Dual solver");
+      max_iterations       = prm.get_integer("Maximum iterations");
       alert_distance       = prm.get_double("Alert distance");
       drag_coefficient     = prm.get_double("Drag coefficient");
       roughness            = prm.get_double("Roughness");
@@ -119,6 +130,12 @@ namespace Fidus
                        std::to_string(friction_coefficient) +
                        " with 'Contact/Model = none', which has no contacts; "
                        "allowed: 0, or the model 'inelastic' or 'gluey'");
+    if (model == ContactModel::none && max_iterations != 100000)
+      throw InputError("entry 'Contact/Maximum iterations' has the value " +
+                       std::to_string(max_iterations) +
+                       " with 'Contact/Model = none', which projects "
+                       "nothing; allowed: the default 100000, or the model "
+                       "'inelastic' or 'gluey'");
     if (model == ContactModel::none && rough_contact)
       throw InputError("entry 'Contact/Rough contact' is true with "
                        "'Contact/Model = none', which has no contacts; "
@@ -145,6 +162,7 @@ namespace Fidus
     cs.alert_distance    = alert_distance * smallest_radius;
     cs.overlap_tolerance = 2. * cs.tolerance;
     cs.friction          = friction_coefficient;
+    cs.max_iterations    = max_iterations;
     cs.contact_distance  = rough_contact ? roughness : 0.;
     return cs;
   }

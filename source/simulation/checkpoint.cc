@@ -22,7 +22,10 @@ namespace Fidus
     const std::string magic = "fidus checkpoint";
     // Raised whenever the layout of state.bin changes.
     // 2: the run state holds the shear rates of its velocities.
-    constexpr std::uint32_t format_version = 2;
+    // 3: and, at its end, the overlap a stalled contact projection left
+    //    for the next one (format 2 is read with none).
+    constexpr std::uint32_t format_version         = 3;
+    constexpr std::uint32_t oldest_readable_format = 2;
 
     const char *const boundary_names[] = {"linear shear",
                                           "sliding walls",
@@ -295,9 +298,10 @@ namespace Fidus
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' is not a fidus checkpoint");
     const auto version = a.get<std::uint32_t>();
-    if (version != format_version)
+    if (version < oldest_readable_format || version > format_version)
       throw InputError("--resume: '" + r.folder + "/state.bin' has format " +
-                       std::to_string(version) + "; allowed: format " +
+                       std::to_string(version) + "; allowed: formats " +
+                       std::to_string(oldest_readable_format) + " to " +
                        std::to_string(format_version) +
                        " (written by another version of fidus)");
     const auto dimension = a.get<std::uint32_t>();
@@ -381,7 +385,7 @@ namespace Fidus
             "completely by fidus (remove this checkpoint folder to start "
             "the run anew)");
       }
-    r.state.load(a);
+    r.state.load(a, version >= 3);
     if (!a.at_end())
       throw InputError("--resume: '" + r.folder +
                        "/state.bin' holds more than a checkpoint (damaged)");

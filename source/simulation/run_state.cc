@@ -50,12 +50,13 @@ namespace Fidus
       }
     a.put(totals);
     a.put(wall_seconds_before);
+    a.put(carried_overlap);
   }
 
 
 
   void
-  RunState::load(ArchiveReader &a)
+  RunState::load(ArchiveReader &a, const bool with_carried_overlap)
   {
     step             = a.get<unsigned int>();
     time             = a.get<double>();
@@ -84,5 +85,6 @@ namespace Fidus
       }
     totals              = a.get<RunTotals>();
     wall_seconds_before = a.get<double>();
+    carried_overlap     = with_carried_overlap ? a.get<double>() : 0.;
   }
 } // namespace Fidus

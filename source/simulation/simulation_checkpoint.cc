@@ -50,6 +50,7 @@ namespace Fidus
     state = resume->state;
     warnings.restore(state.warnings);
     projector.restore_glue(state.glue);
+    projector.restore_overlap_carried(state.carried_overlap);
     {
       TimerOutput::Scope scope(*timer, "checkpoint");
       fluid->load_checkpoint(resume->folder, state);
@@ -157,6 +158,7 @@ namespace Fidus
     MPI_Barrier(comm);
 
     saved.glue                = projector.glue_state().entries();
+    saved.carried_overlap     = projector.overlap_carried();
     saved.warnings            = warnings.get_tallies();
     saved.wall_seconds_before = elapsed_wall_seconds();
     unsigned long long bytes  = 0;

@@ -108,6 +108,10 @@ expect_error "friction without contacts" "entry 'Contact/Friction coefficient' h
   "$(base; printf 'subsection Contact\n  set Model = none\n  set Friction coefficient = 0.5\nend\n')"
 expect_error "rough contact without contacts" "entry 'Contact/Rough contact' is true with 'Contact/Model = none', which has no contacts; allowed: false, or the model 'inelastic' or 'gluey'" \
   "$(base; printf 'subsection Contact\n  set Model = none\n  set Rough contact = true\nend\n')"
+expect_error "contact iterations without contacts" "entry 'Contact/Maximum iterations' has the value 50 with 'Contact/Model = none', which projects nothing; allowed: the default 100000, or the model 'inelastic' or 'gluey'" \
+  "$(base; printf 'subsection Contact\n  set Model = none\n  set Maximum iterations = 50\nend\n')"
+expect_error "no contact iterations" "Maximum iterations" \
+  "$(base; printf 'subsection Contact\n  set Maximum iterations = 0\nend\n')"
 expect_error "penalty factor <= 1" "Penalty factor.*allowed: a value > 1" \
   "$(base; printf 'subsection Fluid\n  set Penalty factor = 1\nend\n')"
 expect_error "wrong number of coordinates" "Particles/Positions.*allowed: exactly 2 coordinates" \

@@ -46,10 +46,13 @@ namespace Fidus
     Contact::Settings
     settings(const unsigned int dim, const double smallest_radius) const;
 
-    ContactModel model          = ContactModel::gluey;
-    bool         walls          = true;
-    double       tolerance      = 1e-9;
-    std::string  dual_solver    = "projected Gauss-Seidel";
+    ContactModel model       = ContactModel::gluey;
+    bool         walls       = true;
+    double       tolerance   = 1e-9;
+    std::string  dual_solver = "projected Gauss-Seidel";
+    /// Dual-solver iterations before a projection stops short of its
+    /// tolerance (Contact::Settings::max_iterations).
+    unsigned int max_iterations = 100000;
     double       alert_distance = 0.1;
     /// Drag coefficient zeta that turns a contact correction of velocity
     /// into a force (F = zeta (u - u*)) for the contact stress; 0: the

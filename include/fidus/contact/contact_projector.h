@@ -208,6 +208,23 @@ namespace Fidus::Contact
     double
     tolerated_overlap() const;
 
+    /// What tolerated_overlap() carries over from the last projection:
+    /// twice its residual if it did not converge, else 0 (kept in
+    /// checkpoints, so that a resumed run accepts what a stalled
+    /// projection left, as the uninterrupted run does).
+    double
+    overlap_carried() const
+    {
+      return carried_overlap;
+    }
+
+    /// Continue from a saved overlap_carried() (a resumed run).
+    void
+    restore_overlap_carried(const double overlap)
+    {
+      carried_overlap = overlap;
+    }
+
     /// Number of glued contacts that involve each particle (for output).
     std::vector<unsigned int>
     glued_count_per_particle(std::size_t n_particles) const;

@@ -78,6 +78,11 @@ namespace Fidus
     /// Glue variables and contact multipliers per remembered pair.
     std::vector<Contact::GlueState::Entry> glue;
 
+    /// The overlap the next contact projection accepts beyond its
+    /// tolerance, after one that did not converge
+    /// (Contact::ContactProjector::overlap_carried()).
+    double carried_overlap = 0.;
+
     /// Warning counters by kind.
     std::map<std::string, WarningLog::Tally> warnings;
 
@@ -92,11 +97,13 @@ namespace Fidus
     void
     initialise(const std::vector<Vec3> &positions);
 
-    /// Append to / read from a checkpoint archive (same order).
+    /// Append to / read from a checkpoint archive (same order). Archives
+    /// of checkpoint format 2 end before carried_overlap: @p
+    /// with_carried_overlap false reads them, with 0 for it.
     void
     save(ArchiveWriter &archive) const;
     void
-    load(ArchiveReader &archive);
+    load(ArchiveReader &archive, bool with_carried_overlap = true);
   };
 } // namespace Fidus
 
