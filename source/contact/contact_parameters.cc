@@ -38,7 +38,7 @@ namespace Fidus
                       "Algorithm for the multipliers of the projection.");
     prm.declare_entry(
       "Maximum iterations",
-      "100000",
+      std::to_string(Contact::Settings().max_iterations),
       Patterns::Integer(1),
       "Iterations of the dual solver (sweeps of Gauss-Seidel) after which "
       "a projection that has not reached 'Tolerance' stops. The run goes "
@@ -130,12 +130,15 @@ namespace Fidus
                        std::to_string(friction_coefficient) +
                        " with 'Contact/Model = none', which has no contacts; "
                        "allowed: 0, or the model 'inelastic' or 'gluey'");
-    if (model == ContactModel::none && max_iterations != 100000)
+    // The contact library's own limit is the entry's default.
+    const unsigned int default_iterations = Contact::Settings().max_iterations;
+    if (model == ContactModel::none && max_iterations != default_iterations)
       throw InputError("entry 'Contact/Maximum iterations' has the value " +
                        std::to_string(max_iterations) +
                        " with 'Contact/Model = none', which projects "
-                       "nothing; allowed: the default 100000, or the model "
-                       "'inelastic' or 'gluey'");
+                       "nothing; allowed: the default " +
+                       std::to_string(default_iterations) +
+                       ", or the model 'inelastic' or 'gluey'");
     if (model == ContactModel::none && rough_contact)
       throw InputError("entry 'Contact/Rough contact' is true with "
                        "'Contact/Model = none', which has no contacts; "
