@@ -1,5 +1,6 @@
 #include <cmath>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -94,6 +95,35 @@ namespace Fidus
                          "coarse for its radius " +
                          std::to_string(solid.radius(i)) +
                          " (raise 'Mesh refinement/Maximum level')");
+        // The rotation is fitted through the second moment of the
+        // integrated points about their centroid, J - (|c|^2 I - c c^T) / V.
+        // A small particle on a coarse mesh (its solid retracted by 'Solid
+        // retraction') can hold so few points, so close together, that
+        // this moment vanishes about some axis, and the fit then returns an
+        // unbounded rotation (measured: 1e14 for spheres of radius 0.04 at
+        // h = 0.0625, with a bounded flow). Stop with the remedy instead.
+        // A resolved ball, or the quarter or more of one that the fit uses
+        // (above), keeps its smallest moment well above 1e-3 of its largest.
+        if (dim == 3)
+          {
+            const double         *c  = &s[16];
+            const double          cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+            SymmetricTensor<2, 3> J;
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = a; b < 3; ++b)
+                J[a][b] =
+                  s[7 + 3 * a + b] - ((a == b ? cc : 0.) - c[a] * c[b]) / s[0];
+            const auto lambda = eigenvalues(J); // descending
+            if (!(lambda[2] > 1e-3 * lambda[0]))
+              throw RunError(
+                "particle " + std::to_string(i) +
+                " holds too few quadrature points to fit a rigid rotation: "
+                "its solid, a ball of radius " +
+                std::to_string(solid.radius(i)) +
+                " (after 'Fluid/Solid retraction'), is too small for the "
+                "mesh (raise 'Mesh refinement/Maximum level', or lower "
+                "'Fluid/Solid retraction')");
+          }
         motions[i].volume = s[0];
         // Normal equations of min int |u - U - omega x r|^2 over the
         // integrated part of the particle: with c = int r,
