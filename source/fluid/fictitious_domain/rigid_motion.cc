@@ -9,6 +9,46 @@
 
 namespace Fidus
 {
+  namespace
+  {
+    /**
+     * Stop the run where the rigid fit cannot determine a rotation. @p s
+     * holds a particle's sums (volume V at 0, J at 7..15, c = int r at
+     * 16..18); the rotation is fitted through the second moment of the
+     * integrated points about their centroid, J - (|c|^2 I - c c^T) / V.
+     * A small particle on a coarse mesh (its solid retracted by 'Solid
+     * retraction') can hold so few points, so close together, that this
+     * moment vanishes about some axis, and the fit then returns an
+     * unbounded rotation (measured: 1e14 for spheres of radius 0.04 at
+     * h = 0.0625, with a bounded flow). A resolved ball, or the quarter or
+     * more of one that the fit uses, keeps its smallest moment well above
+     * 1e-3 of its largest.
+     */
+    void
+    check_rotation_determined(const double      *s,
+                              const unsigned int i,
+                              const double       radius)
+    {
+      const double         *c  = &s[16];
+      const double          cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+      SymmetricTensor<2, 3> J;
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = a; b < 3; ++b)
+          J[a][b] =
+            s[7 + 3 * a + b] - ((a == b ? cc : 0.) - c[a] * c[b]) / s[0];
+      const auto lambda = eigenvalues(J); // descending
+      if (!(lambda[2] > 1e-3 * lambda[0]))
+        throw RunError(
+          "particle " + std::to_string(i) +
+          " holds too few quadrature points to fit a rigid rotation: its "
+          "solid, a ball of radius " +
+          std::to_string(radius) +
+          " (after 'Fluid/Solid retraction'), is too small for the mesh "
+          "(raise 'Mesh refinement/Maximum level', or lower 'Fluid/Solid "
+          "retraction')");
+    }
+  } // namespace
+
   template <int dim>
   std::vector<RigidMotion>
   compute_rigid_motions(
@@ -95,35 +135,8 @@ namespace Fidus
                          "coarse for its radius " +
                          std::to_string(solid.radius(i)) +
                          " (raise 'Mesh refinement/Maximum level')");
-        // The rotation is fitted through the second moment of the
-        // integrated points about their centroid, J - (|c|^2 I - c c^T) / V.
-        // A small particle on a coarse mesh (its solid retracted by 'Solid
-        // retraction') can hold so few points, so close together, that
-        // this moment vanishes about some axis, and the fit then returns an
-        // unbounded rotation (measured: 1e14 for spheres of radius 0.04 at
-        // h = 0.0625, with a bounded flow). Stop with the remedy instead.
-        // A resolved ball, or the quarter or more of one that the fit uses
-        // (above), keeps its smallest moment well above 1e-3 of its largest.
         if (dim == 3)
-          {
-            const double         *c  = &s[16];
-            const double          cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-            SymmetricTensor<2, 3> J;
-            for (unsigned int a = 0; a < 3; ++a)
-              for (unsigned int b = a; b < 3; ++b)
-                J[a][b] =
-                  s[7 + 3 * a + b] - ((a == b ? cc : 0.) - c[a] * c[b]) / s[0];
-            const auto lambda = eigenvalues(J); // descending
-            if (!(lambda[2] > 1e-3 * lambda[0]))
-              throw RunError(
-                "particle " + std::to_string(i) +
-                " holds too few quadrature points to fit a rigid rotation: "
-                "its solid, a ball of radius " +
-                std::to_string(solid.radius(i)) +
-                " (after 'Fluid/Solid retraction'), is too small for the "
-                "mesh (raise 'Mesh refinement/Maximum level', or lower "
-                "'Fluid/Solid retraction')");
-          }
+          check_rotation_determined(s, i, solid.radius(i));
         motions[i].volume = s[0];
         // Normal equations of min int |u - U - omega x r|^2 over the
         // integrated part of the particle: with c = int r,
