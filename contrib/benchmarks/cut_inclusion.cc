@@ -129,10 +129,11 @@ namespace
             const unsigned int               band_levels)
   {
     using Solver = Fidus::CutStokesInclusion<2>;
-    std::printf("| h/a | level | a / cell | %s | unknowns | cut cells | gap "
-                "refinements | wall s | residual | U_0 + U_1 | omega_0 |\n"
-                "|---|---|---|---|---|---|---|---|---|---|---|\n",
-                held ? "closing speed / undisturbed" : "approach speed");
+    std::printf(
+      "| h/a | level | a / cell | %s | unknowns | cut cells | gap "
+      "refinements | wall s | FGMRES | residual | U_0 + U_1 | omega_0 |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+      held ? "closing speed / undisturbed" : "approach speed");
     for (const double gap : gaps)
       for (const unsigned int level : levels)
         {
@@ -156,8 +157,8 @@ namespace
           set_linear_solver<2>(s);
           const auto   r       = Solver::solve(s);
           const double closing = -n * (r.velocity[1] - r.velocity[0]);
-          std::printf("| %g | %u | %.1f | %.6e | %u | %u | %u | %.2f | %.1e | "
-                      "%.1e | %.1e |\n",
+          std::printf("| %g | %u | %.1f | %.6e | %u | %u | %u | %.2f | %u | "
+                      "%.1e | %.1e | %.1e |\n",
                       gap,
                       level,
                       a * (1 << level),
@@ -166,6 +167,7 @@ namespace
                       r.n_cut_cells,
                       r.n_gap_refinements,
                       r.seconds,
+                      r.n_iterations,
                       r.residual,
                       (r.velocity[0] + r.velocity[1]).norm(),
                       r.angular_velocity[0][2]);

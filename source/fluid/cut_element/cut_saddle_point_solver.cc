@@ -232,6 +232,8 @@ namespace Fidus
 
     build_pressure_schur(pressure_mass, layout);
 
+    mean = layout.pressure_mean;
+
     // The multigrid on K; or the AMG of the velocity block, with the rigid
     // motions about the box's centre as near-null space: the viscous
     // operator does not see them, and translations alone leave the coarse
@@ -332,7 +334,7 @@ namespace Fidus
       SolverFGMRES<Vector<double>>::AdditionalData(300));
     try
       {
-        fgmres.solve(matrix, x, b, *this);
+        fgmres.solve(System{matrix, mean}, x, b, *this);
       }
     catch (const SolverControl::NoConvergence &e)
       {

@@ -145,8 +145,9 @@ namespace Fidus
 
     // The box takes the exact velocity (the faces are numbered 2d, 2d + 1
     // for axis d), sliding walls only on y = 0, H, with the periodic faces
-    // identified. One pressure value is pinned, since with the velocity
-    // given on every wall the pressure is fixed up to a constant.
+    // identified. With the velocity given on every wall the pressure is
+    // fixed up to a constant: no pressure value is pinned, both solvers fix
+    // its mean instead (solve_linear_system()).
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     for (unsigned int face = 0; face < 2 * dim; ++face)
       if (!is_periodic(face / 2))
@@ -157,17 +158,6 @@ namespace Fidus
                                                  fe_collection.component_mask(
                                                    velocity));
     mesh->make_periodicity_constraints(dof_handler, constraints);
-    {
-      const IndexSet pressure_dofs =
-        DoFTools::extract_dofs(dof_handler,
-                               fe_collection.component_mask(pressure));
-      for (const auto i : pressure_dofs)
-        if (!constraints.is_constrained(i))
-          {
-            constraints.add_line(i);
-            break;
-          }
-    }
     constraints.close();
   }
 
@@ -293,7 +283,9 @@ namespace Fidus
       if (taylor_hood.system_to_component_index(k).first == dim)
         pressure_shapes.push_back(k);
     local_pressure.reinit(pressure_shapes.size(), pressure_shapes.size());
+    local_pressure_mean.reinit(pressure_shapes.size());
     pressure_dof_indices.resize(pressure_shapes.size());
+    pressure_mean.reinit(n_total);
     if (iterative)
       {
         Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
@@ -347,11 +339,10 @@ namespace Fidus
             for (unsigned int j = 0; j < n_local; ++j)
               local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
           }
-        if (iterative)
-          for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-            for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
-              local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
-                                      q_shape[pressure_shapes[b]] / eta;
+        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+            local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
+                                    q_shape[pressure_shapes[b]] / eta;
       }
   }
 
@@ -405,14 +396,20 @@ namespace Fidus
   void
   CutStokesSolve<dim>::distribute_cell()
   {
-    if (iterative)
+    for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
       {
-        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-          pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
-        constraints.distribute_local_to_global(local_pressure,
-                                               pressure_dof_indices,
-                                               pressure_mass);
+        pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
+        local_pressure_mean[a]  = 0.;
+        for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+          local_pressure_mean[a] += local_pressure(a, b);
       }
+    constraints.distribute_local_to_global(local_pressure_mean,
+                                           pressure_dof_indices,
+                                           pressure_mean);
+    if (iterative)
+      constraints.distribute_local_to_global(local_pressure,
+                                             pressure_dof_indices,
+                                             pressure_mass);
     if (periodic)
       unconstrained.add(ext_dofs, local);
     constraints.distribute_local_to_global(local,
@@ -682,6 +679,26 @@ namespace Fidus
       residual(n_total);
     for (unsigned int i = 0; i < n_total; ++i)
       scaled_rhs[i] = scale[i] * rhs[i];
+
+    // The pressure's constant is fixed by its mean over the fluid: both
+    // solvers solve A' x' - m' m'^T x' = b', where m_i = int phi_i / eta
+    // over the fluid (the pressure mass of the constant), normalised by
+    // the square root of 1^T m, and m' = D m. This keeps every continuity
+    // row (pinning one pressure value dropped one, which then held the cut
+    // quadratures' small miss of the divergence theorem), and gives the
+    // Schur complement on the constant what the iterative solver's
+    // pressure mass gives it (doc/history/cut_element.md, "The pinned
+    // pressure").
+    {
+      double volume = 0.;
+      for (unsigned int i = 0; i < n_fluid; ++i)
+        volume += pressure_mean[i];
+      if (!(volume > 0.))
+        throw std::runtime_error("CutStokesInclusion: the fluid has no volume");
+      scaled_mean.reinit(n_total);
+      for (unsigned int i = 0; i < n_fluid; ++i)
+        scaled_mean[i] = scale[i] * pressure_mean[i] / std::sqrt(volume);
+    }
     if (iterative)
       solve_iterative(scaled_rhs, scaled_solution, residual);
     else
@@ -708,6 +725,7 @@ namespace Fidus
     layout.constrained.assign(n_total, false);
     layout.support_point.resize(n_total);
     layout.component.assign(n_total, 0);
+    layout.pressure_mean = scaled_mean;
     for (unsigned int i = 0; i < n_fluid; ++i)
       {
         layout.kind[i]        = is_pressure[i] ? 1 : 0;
@@ -748,7 +766,7 @@ namespace Fidus
                                          s.iterative_max_iterations);
     result.n_iterations                  = statistics.iterations;
     result.n_setup_iterations            = statistics.setup_iterations;
-    matrix.vmult(residual, scaled_solution);
+    apply_system(residual, scaled_solution);
     residual.sadd(-1., scaled_rhs);
   }
 
@@ -758,9 +776,36 @@ namespace Fidus
                                     Vector<double>       &scaled_solution,
                                     Vector<double>       &residual)
   {
+    // The bordered system [A' m'; m'^T 1] [x'; y] = [b'; 0], whose first
+    // rows are A' x' - m' m'^T x' = b' (y = -m'^T x').
+    const unsigned int     n = n_total + 1;
+    DynamicSparsityPattern dsp(n, n);
+    for (unsigned int i = 0; i < n_total; ++i)
+      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+        dsp.add(i, it->column());
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (scaled_mean[i] != 0.)
+        {
+          dsp.add(i, n_total);
+          dsp.add(n_total, i);
+        }
+    dsp.add(n_total, n_total);
+    SparsityPattern bordered_sparsity;
+    bordered_sparsity.copy_from(dsp);
+    SparseMatrix<double> bordered(bordered_sparsity);
+    for (unsigned int i = 0; i < n_total; ++i)
+      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+        bordered.set(i, it->column(), it->value());
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (scaled_mean[i] != 0.)
+        {
+          bordered.set(i, n_total, scaled_mean[i]);
+          bordered.set(n_total, i, scaled_mean[i]);
+        }
+    bordered.set(n_total, n_total, 1.);
     TrilinosWrappers::SparseMatrix trilinos_matrix;
-    trilinos_matrix.reinit(matrix);
-    const IndexSet                all = complete_index_set(n_total);
+    trilinos_matrix.reinit(bordered);
+    const IndexSet                all = complete_index_set(n);
     TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF), b(all, MPI_COMM_SELF);
     SolverControl                 control;
     std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
@@ -790,7 +835,7 @@ namespace Fidus
         direct->solve(x, b);
         for (unsigned int i = 0; i < n_total; ++i)
           scaled_solution[i] += x[i];
-        matrix.vmult(residual, scaled_solution);
+        apply_system(residual, scaled_solution);
         residual.sadd(-1., scaled_rhs);
       }
   }

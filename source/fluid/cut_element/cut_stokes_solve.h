@@ -296,6 +296,15 @@ namespace Fidus
                     Vector<double>       &scaled_solution,
                     Vector<double>       &residual);
 
+    /// dst = (A' - m' m'^T) src: the scaled system with the pressure's
+    /// mean fixed, as both solvers solve it.
+    void
+    apply_system(Vector<double> &dst, const Vector<double> &src) const
+    {
+      matrix.vmult(dst, src);
+      dst.add(-(scaled_mean * src), scaled_mean);
+    }
+
     /// The direct solve of the scaled system, MUMPS (KLU where it is
     /// missing) with iterative refinement; @p residual is A' x' - b'.
     void
@@ -357,6 +366,12 @@ namespace Fidus
     /// The pressure mass matrix over the fluid (iterative solver only).
     SparsityPattern      mass_sparsity;
     SparseMatrix<double> pressure_mass;
+    /// The pressure mass of the constant pressure, m_i = int phi_i / eta
+    /// over the fluid (zero but on the unconstrained pressures), and m'
+    /// = D m / (1^T m)^(1/2) of the scaled system (solve_linear_system()).
+    Vector<double> pressure_mean, scaled_mean;
+    /// This cell's part of pressure_mean.
+    Vector<double> local_pressure_mean;
     /// The pressure shape functions of a fluid cell.
     std::vector<unsigned int> pressure_shapes;
     Vector<double>            rhs, solution;

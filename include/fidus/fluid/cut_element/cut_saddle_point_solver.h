@@ -31,7 +31,15 @@ namespace Fidus
    *   [ A_Vu  A_VV  B_V^T ]
    *   [ B_u   B_V   -C    ]
    *
-   * (C the pressure's ghost penalty). FGMRES runs on it with the upper
+   * (C the pressure's ghost penalty). Without a pinned pressure value
+   * (Layout::pressure_mean given) the pressure block is -C - m m^T, where
+   * m = M c / (c^T M c)^(1/2), c the constant pressure and M the pressure
+   * mass below: the term fixes the pressure's mean to zero and gives the
+   * Schur complement on the constant exactly what M gives it, so the
+   * constant needs no iterations of its own (pinning one value instead
+   * makes the constant a mode of the Schur complement whose eigenvalue
+   * falls with the mesh size: FGMRES grew with the level).
+   * FGMRES runs on it with the upper
    * block-triangular preconditioner [K B^T; 0 -S]^-1, where S is the
    * pressure mass matrix over the fluid (divided by the viscosity) plus C,
    * applied with one AMG cycle. K^-1 is, by default, one V-cycle of the
@@ -60,6 +68,10 @@ namespace Fidus
       /// AMG's near-null space); unused for the others.
       std::vector<Point<dim>>    support_point;
       std::vector<unsigned char> component;
+      /// m, the vector of the rank-one term that fixes the pressure's
+      /// mean (see the class's documentation); empty when a pressure value
+      /// is pinned instead.
+      Vector<double> pressure_mean;
     };
 
     /// The cost of one solve.
@@ -138,6 +150,25 @@ namespace Fidus
     std::vector<Vector<double>> w;
     FullMatrix<double>          rigid_schur_inverse;
     Statistics                  statistics;
+    /// The system as FGMRES multiplies by it: the matrix and, without a
+    /// pinned pressure, the rank-one term that fixes the mean.
+    struct System
+    {
+      const SparseMatrix<double> &matrix;
+      /// m; empty with a pinned pressure.
+      const Vector<double> &mean;
+      void
+      vmult(Vector<double> &dst, const Vector<double> &src) const
+      {
+        matrix.vmult(dst, src);
+        if (mean.size() > 0)
+          dst.add(-(mean * src), mean);
+      }
+    };
+
+    /// m (see the class's documentation), or empty.
+    Vector<double> mean;
+
     /// Work vectors of vmult.
     mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product, r_v, z_v;
   };
