@@ -1,5 +1,8 @@
 #include <fidus/core/memory_usage.h>
 #include <fstream>
+#ifdef __GLIBC__
+#  include <malloc.h>
+#endif
 #include <iomanip>
 #include <sstream>
 
@@ -34,6 +37,16 @@ namespace Fidus
     current_bytes()
     {
       return read_kilobytes("/proc/self/status", "VmRSS");
+    }
+
+
+
+    void
+    release_free_memory()
+    {
+#ifdef __GLIBC__
+      malloc_trim(0);
+#endif
     }
 
 

@@ -27,6 +27,14 @@ namespace Fidus
     std::size_t
     available_bytes();
 
+    /// Hand the heap's free pages back to the operating system (glibc:
+    /// malloc_trim; elsewhere nothing). Many small blocks freed in the
+    /// middle of the heap (a set-up's scratch) otherwise stay resident,
+    /// count in VmRSS and so in the memory budget, and are not reused by
+    /// the large vectors that follow, which glibc maps on their own.
+    void
+    release_free_memory();
+
     /// @p bytes in the largest of B, KB, MB, GB that keeps it at or above
     /// one, with three significant digits ("1.69 GB").
     std::string

@@ -4,6 +4,7 @@
 #include "stokes_linear_solvers.h"
 
 #include <deal.II/base/utilities.h>
+#include <fidus/core/memory_usage.h>
 #include <fidus/fluid/fictitious_domain/deflated_velocity_preconditioner.h>
 #include <iostream>
 
@@ -81,6 +82,10 @@ namespace Fidus
       },
       assembles_velocity_block() ? &s.system_matrix.block(0, 0) : nullptr,
       s.constraints);
+    // The cut-cell blocks are summed as full matrices (tens of KB each,
+    // on the heap) and kept packed; the full ones, freed, would stay
+    // resident under the FGMRES basis that follows.
+    MemoryUsage::release_free_memory();
   }
 
 

@@ -74,6 +74,20 @@ namespace Fidus
 
 
   template <int dim>
+  bool
+  StokesSolver<dim>::basis_is_short() const
+  {
+    const double vector_bytes = 8. * double(owned_partitioning[0].n_elements() +
+                                            owned_partitioning[1].n_elements());
+    const double short_by =
+      vector_bytes * basis_vectors(settings.gmres_restart) -
+      memory_budget.free_bytes();
+    return Utilities::MPI::max(short_by, mpi_communicator) > 0.;
+  }
+
+
+
+  template <int dim>
   void
   StokesSolver<dim>::IterativeLinearSolver::fit_restart()
   {
@@ -110,6 +124,10 @@ namespace Fidus
     StokesSolver<2>::check_memory_for_mesh(types::global_dof_index) const;
   template void
     StokesSolver<3>::check_memory_for_mesh(types::global_dof_index) const;
+  template bool
+  StokesSolver<2>::basis_is_short() const;
+  template bool
+  StokesSolver<3>::basis_is_short() const;
   template void
   StokesSolver<2>::IterativeLinearSolver::fit_restart();
   template void

@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <fidus/fluid/fictitious_domain/stokes_operator.h>
 #include <fidus/fluid/fictitious_domain/velocity_block.h>
 
 namespace Fidus
@@ -68,7 +69,7 @@ namespace Fidus
 
       if (tmp.size() != src.block(0).size())
         tmp.reinit(src.block(0), true);
-      stokes.block(0, 1).vmult(tmp, dst.block(1));
+      apply_coupling_transpose(stokes, tmp, dst.block(1), false);
       tmp *= -1.;
       tmp += src.block(0);
 

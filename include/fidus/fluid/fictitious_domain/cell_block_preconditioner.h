@@ -110,10 +110,18 @@ namespace Fidus
       const unsigned int n_blocks = block_start.size() - 1;
       find_holders(data);
 
-      std::vector<FullMatrix<double>> blocks(n_blocks);
+      // The blocks are summed in their upper triangles, row by row, one
+      // after the other (half the memory of full matrices: this is the
+      // set-up's largest scratch, 0.9 GB on a rank of the 3D bulk box at
+      // level 6), and their inverses are stored in the same layout.
+      block_inverse_start.assign(1, 0);
       for (unsigned int b = 0; b < n_blocks; ++b)
-        blocks[b].reinit(block_start[b + 1] - block_start[b],
-                         block_start[b + 1] - block_start[b]);
+        {
+          const std::size_t n = block_start[b + 1] - block_start[b];
+          block_inverse_start.push_back(block_inverse_start.back() +
+                                        n * (n + 1) / 2);
+        }
+      std::vector<double> blocks(block_inverse_start.back(), 0.);
 
       // Sum the element matrices of every cell that touches a block.
       op.with_points([&](auto n, const unsigned int quadrature) {
@@ -150,10 +158,9 @@ namespace Fidus
       std::vector<double> &x = scratch, &y = scratch_result;
       for (unsigned int b = 0; b + 1 < block_start.size(); ++b)
         {
-          const unsigned int  first = block_start[b];
-          const unsigned int  n     = block_start[b + 1] - first;
-          const double *const inverse =
-            inverses.data() + block_inverse_start[b];
+          const unsigned int first   = block_start[b];
+          const unsigned int n       = block_start[b + 1] - first;
+          const float *const inverse = inverses.data() + block_inverse_start[b];
           x.resize(n);
           for (unsigned int k = 0; k < n; ++k)
             x[k] = src.local_element(block_dofs[first + k]);
@@ -164,11 +171,11 @@ namespace Fidus
           y.assign(n, 0.);
           double *const       out   = y.data();
           const double *const in    = x.data();
-          const double       *entry = inverse;
+          const float        *entry = inverse;
           for (unsigned int k = 0; k < n; ++k)
             {
-              const double        xk  = in[k];
-              const double *const row = entry - k;
+              const double       xk  = in[k];
+              const float *const row = entry - k;
               // Four partial sums: one would chain every addition to the
               // last (the compiler may not reorder them).
               double       s0 = row[k] * xk, s1 = 0., s2 = 0., s3 = 0.;
@@ -218,7 +225,7 @@ namespace Fidus
     {
       const unsigned int n = block_start[b + 1] - block_start[b];
       FullMatrix<double> inverse(n, n);
-      const double      *entry = inverses.data() + block_inverse_start[b];
+      const float       *entry = inverses.data() + block_inverse_start[b];
       for (unsigned int p = 0; p < n; ++p)
         for (unsigned int q = p; q < n; ++q, ++entry)
           inverse(p, q) = inverse(q, p) = *entry;
@@ -505,10 +512,10 @@ namespace Fidus
     /// Add the element matrix of the cell last resolved to the blocks that
     /// share its DoFs.
     void
-    scatter(const SetupData                 &data,
-            ElementScratch                  &s,
-            const FullMatrix<double>        &matrix,
-            std::vector<FullMatrix<double>> &blocks) const
+    scatter(const SetupData          &data,
+            ElementScratch           &s,
+            const FullMatrix<double> &matrix,
+            std::vector<double>      &blocks) const
     {
       const unsigned int dofs_per_cell = data.dofs_per_cell;
       const auto        &holder_start  = data.holder_start;
@@ -532,12 +539,16 @@ namespace Fidus
                 if (s.position[i] >= 0)
                   s.in_block[a].emplace_back(s.position[i], weight);
             }
-          FullMatrix<double> &block = blocks[b];
+          // The upper triangle: (a, c) with p > q is the mirror of (c, a),
+          // which the element matrix's symmetry makes the same entry.
+          double *const      block = blocks.data() + block_inverse_start[b];
+          const unsigned int n     = block_start[b + 1] - block_start[b];
           for (unsigned int a = 0; a < dofs_per_cell; ++a)
             for (const auto &[p, wp] : s.in_block[a])
               for (unsigned int c = 0; c < dofs_per_cell; ++c)
                 for (const auto &[q, wq] : s.in_block[c])
-                  block(p, q) += wp * wq * matrix(a, c);
+                  if (p <= q)
+                    block[packed_index(p, q, n)] += wp * wq * matrix(a, c);
           for (unsigned int k = block_start[b]; k < block_start[b + 1]; ++k)
             s.position[block_dofs[k]] = -1;
         }
@@ -547,10 +558,10 @@ namespace Fidus
     /// block, from the operator's own cell integrand on @p n_1d points.
     template <int n_1d>
     void
-    add_cell_matrices(SetupData                       &data,
-                      const unsigned int               quadrature,
-                      ElementScratch                  &s,
-                      std::vector<FullMatrix<double>> &blocks) const
+    add_cell_matrices(SetupData           &data,
+                      const unsigned int   quadrature,
+                      ElementScratch      &s,
+                      std::vector<double> &blocks) const
     {
       const Operator                &op            = data.op;
       const MatrixFree<dim, double> &mf            = data.mf;
@@ -604,9 +615,9 @@ namespace Fidus
 
     /// Adds the element matrices of the ghost cells that touch a block.
     void
-    add_ghost_cell_matrices(SetupData                       &data,
-                            ElementScratch                  &s,
-                            std::vector<FullMatrix<double>> &blocks) const
+    add_ghost_cell_matrices(SetupData           &data,
+                            ElementScratch      &s,
+                            std::vector<double> &blocks) const
     {
       const unsigned int dofs_per_cell = data.dofs_per_cell;
       FEValues<dim>     &ghost_values  = *data.ghost_values;
@@ -635,52 +646,57 @@ namespace Fidus
         }
     }
 
-    /// Inverts the blocks, scales and symmetrises the inverses and stores
-    /// their upper triangles in inverses.
+    /// Index of entry (p, q), p <= q, of an n x n upper triangle stored
+    /// row by row.
+    static std::size_t
+    packed_index(const std::size_t p, const std::size_t q, const std::size_t n)
+    {
+      return p * (2 * n - p + 1) / 2 + (q - p);
+    }
+
+    /// Inverts the blocks (upper triangles in @p sums), scales the
+    /// inverses and stores their upper triangles in inverses.
     void
-    invert_blocks(const SetupData                 &data,
-                  std::vector<FullMatrix<double>> &blocks)
+    invert_blocks(const SetupData &data, const std::vector<double> &sums)
     {
       const unsigned int n_blocks     = block_start.size() - 1;
       const auto        &holder_start = data.holder_start;
 
-      // Invert the blocks; the point part leaves their DoFs alone.
-      block_inverse_start.assign(1, 0);
+      // In single precision: a smoother's block solve does not need more,
+      // and the inverses are the largest data a smoothing step streams
+      // (symmetry halves them, single precision halves them again).
+      inverses.resize(sums.size());
       for (unsigned int b = 0; b < n_blocks; ++b)
         {
-          blocks[b].gauss_jordan();
+          const unsigned int first = block_start[b];
+          const unsigned int n     = block_start[b + 1] - first;
+          const double      *sum   = sums.data() + block_inverse_start[b];
+          FullMatrix<double> block(n, n);
+          for (unsigned int p = 0; p < n; ++p)
+            for (unsigned int q = p; q < n; ++q)
+              block(p, q) = block(q, p) = sum[packed_index(p, q, n)];
+          block.gauss_jordan();
           // Scaled by 1/sqrt(m_p m_q), m the number of blocks holding a
           // DoF: still symmetric, and the overlap no longer stretches the
           // top of the spectrum that Chebyshev must cover (at 3D level 4,
-          // r = 1e4: 47 FGMRES per solve against 54 unscaled).
-          {
-            const unsigned int first = block_start[b];
-            for (unsigned int p = 0; p < blocks[b].m(); ++p)
-              for (unsigned int q = 0; q < blocks[b].n(); ++q)
-                {
-                  const unsigned int ip = block_dofs[first + p],
-                                     iq = block_dofs[first + q];
-                  blocks[b](p, q) /=
-                    std::sqrt(double(holder_start[ip + 1] - holder_start[ip]) *
-                              double(holder_start[iq + 1] - holder_start[iq]));
-                }
-          }
-          // Exactly symmetric, as add_block_solves assumes.
-          for (unsigned int p = 0; p < blocks[b].m(); ++p)
-            for (unsigned int q = 0; q < p; ++q)
-              blocks[b](p, q) = blocks[b](q, p) =
-                0.5 * (blocks[b](p, q) + blocks[b](q, p));
-          for (const double v : blocks[b])
-            AssertThrow(std::isfinite(v),
-                        ExcMessage("A cut-cell block of the multigrid "
-                                   "smoother is singular."));
-          // The upper triangle, row by row: the inverses are the largest
-          // data a smoothing step streams (24 spheres: 100 MB), and
-          // symmetry halves it.
-          for (unsigned int p = 0; p < blocks[b].m(); ++p)
-            for (unsigned int q = p; q < blocks[b].n(); ++q)
-              inverses.push_back(blocks[b](p, q));
-          block_inverse_start.push_back(inverses.size());
+          // r = 1e4: 47 FGMRES per solve against 54 unscaled). The upper
+          // triangle of the mean of the inverse and its transpose, exactly
+          // symmetric as add_block_solves assumes.
+          float *const inverse = inverses.data() + block_inverse_start[b];
+          for (unsigned int p = 0; p < n; ++p)
+            for (unsigned int q = p; q < n; ++q)
+              {
+                const unsigned int ip = block_dofs[first + p],
+                                   iq = block_dofs[first + q];
+                const double value =
+                  0.5 * (block(p, q) + block(q, p)) /
+                  std::sqrt(double(holder_start[ip + 1] - holder_start[ip]) *
+                            double(holder_start[iq + 1] - holder_start[iq]));
+                AssertThrow(std::isfinite(value),
+                            ExcMessage("A cut-cell block of the multigrid "
+                                       "smoother is singular."));
+                inverse[packed_index(p, q, n)] = static_cast<float>(value);
+              }
         }
     }
     /// D^{-1} on the DoFs of no block, zero on theirs.
@@ -692,7 +708,7 @@ namespace Fidus
     /// The blocks' inverses, the upper triangle row by row, one after the
     /// other.
     std::vector<std::size_t>    block_inverse_start{0};
-    std::vector<double>         inverses;
+    std::vector<float>          inverses;
     mutable std::vector<double> scratch, scratch_result;
     std::vector<unsigned int>   holder_count;
   };

@@ -326,6 +326,12 @@ namespace Fidus
     /// (stokes_solver_memory.cc).
     void
     check_memory_for_mesh(types::global_dof_index n_owned) const;
+    /// Whether FGMRES's basis at the configured restart would not fit in
+    /// what some rank has left (then assemble_system() frees B^T, and
+    /// B^T is applied as the transpose of B: slower, by about 6 % per
+    /// dense 3D step, but the size of B less).
+    bool
+    basis_is_short() const;
     /// One solve of the current system, from zero, to @p tolerance
     /// (relative to the right-hand side), by the linear solver of this mesh.
     unsigned int
