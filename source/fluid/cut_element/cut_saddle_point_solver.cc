@@ -78,7 +78,7 @@ namespace Fidus
     const unsigned int n_p = pressure.size();
 
     // S = M / eta + C on the pressures: the system holds -C in its pressure
-    // block. A constrained pressure (the pinned one) keeps its diagonal,
+    // block. A constrained pressure (hanging, or pinned) keeps its diagonal,
     // with the sign that makes -S^-1 its exact inverse.
     DynamicSparsityPattern dsp(n_p, n_p);
     for (const unsigned int i : pressure)
