@@ -57,6 +57,50 @@ distance(const Point<dim> &x)
   return std::sqrt(d2) - 0.2;
 }
 
+/**
+ * Over the cut-cell blocks of @p blocks: the largest |W A_KK W B_K - I|
+ * relative to the single-precision rounding of B_K (A = @p matrix, W the
+ * square roots of the multiplicities), and the largest multiplicity.
+ */
+template <int dim>
+std::pair<double, double>
+block_errors(const Fidus::CellBlockPreconditioner<dim, 2> &blocks,
+             const TrilinosWrappers::SparseMatrix         &matrix,
+             const Utilities::MPI::Partitioner            &partitioner)
+{
+  double worst = 0., largest_multiplicity = 0.;
+  for (unsigned int b = 0; b < blocks.n_blocks(); ++b)
+    {
+      const auto         local   = blocks.block_indices(b);
+      const auto         inverse = blocks.block_inverse(b);
+      const unsigned int n       = local.size();
+      FullMatrix<double> weighted(n, n), product(n, n);
+      for (unsigned int p = 0; p < n; ++p)
+        for (unsigned int q = 0; q < n; ++q)
+          weighted(p, q) = matrix.el(partitioner.local_to_global(local[p]),
+                                     partitioner.local_to_global(local[q])) *
+                           std::sqrt(double(blocks.multiplicity()[local[p]]) *
+                                     blocks.multiplicity()[local[q]]);
+      weighted.mmult(product, inverse);
+      // The inverses are stored in single precision: each entry within
+      // its rounding, 2^-24 relative, so that |A B - I| is bounded by
+      // 2^-24 |A| |B| (maximum-row-sum norms); a wrong inverse is off by
+      // far more.
+      const double rounding =
+        std::ldexp(1., -24) * weighted.linfty_norm() * inverse.linfty_norm();
+      for (unsigned int p = 0; p < n; ++p)
+        for (unsigned int q = 0; q < n; ++q)
+          worst =
+            std::max(worst, std::abs(product(p, q) - (p == q)) / rounding);
+      for (const unsigned int i : local)
+        largest_multiplicity =
+          std::max<double>(largest_multiplicity, blocks.multiplicity()[i]);
+    }
+  return {worst, largest_multiplicity};
+}
+
+
+
 template <int dim>
 void
 check_blocks()
@@ -150,34 +194,8 @@ check_blocks()
   typename Operator::VectorType v, w, pv, pw;
   op.initialize_dof_vector(v);
   const auto &partitioner = v.get_partitioner();
-  double      worst = 0., largest_multiplicity = 0.;
-  for (unsigned int b = 0; b < blocks.n_blocks(); ++b)
-    {
-      const auto         local   = blocks.block_indices(b);
-      const auto         inverse = blocks.block_inverse(b);
-      const unsigned int n       = local.size();
-      FullMatrix<double> weighted(n, n), product(n, n);
-      for (unsigned int p = 0; p < n; ++p)
-        for (unsigned int q = 0; q < n; ++q)
-          weighted(p, q) = matrix.el(partitioner->local_to_global(local[p]),
-                                     partitioner->local_to_global(local[q])) *
-                           std::sqrt(double(blocks.multiplicity()[local[p]]) *
-                                     blocks.multiplicity()[local[q]]);
-      weighted.mmult(product, inverse);
-      // The inverses are stored in single precision: each entry within
-      // its rounding, 2^-24 relative, so that |A B - I| is bounded by
-      // 2^-24 |A| |B| (maximum-row-sum norms); a wrong inverse is off by
-      // far more.
-      const double rounding =
-        std::ldexp(1., -24) * weighted.linfty_norm() * inverse.linfty_norm();
-      for (unsigned int p = 0; p < n; ++p)
-        for (unsigned int q = 0; q < n; ++q)
-          worst =
-            std::max(worst, std::abs(product(p, q) - (p == q)) / rounding);
-      for (const unsigned int i : local)
-        largest_multiplicity =
-          std::max<double>(largest_multiplicity, blocks.multiplicity()[i]);
-    }
+  const auto [worst, largest_multiplicity] =
+    block_errors(blocks, matrix, *partitioner);
   const std::string name = std::to_string(dim) + "D: ";
   check_range(name + "cut-cell blocks on all ranks",
               Utilities::MPI::sum(blocks.n_blocks(), comm),

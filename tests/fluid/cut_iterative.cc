@@ -66,13 +66,10 @@ namespace
                     (a.angular_velocity[p] - b.angular_velocity[p]).norm()});
     return d / scale;
   }
-} // namespace
 
-int
-main(int argc, char **argv)
-{
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-
+  /// The 3D exact inclusion, both solvers.
+  void
+  inclusion_3d()
   {
     using Solver = Fidus::CutStokesInclusion<3>;
     Solver::Settings s;
@@ -107,6 +104,9 @@ main(int argc, char **argv)
                 0.);
   }
 
+  /// Two spheres pushed together, with the multigrid and with the AMG.
+  void
+  pushed_pair_3d()
   {
     using Solver = Fidus::CutStokesInclusion<3>;
     Solver::Settings     s;
@@ -146,6 +146,9 @@ main(int argc, char **argv)
                 200.);
   }
 
+  /// Three discs between sliding walls, one across the periodic face.
+  void
+  sliding_walls_2d()
   {
     using Solver = Fidus::CutStokesInclusion<2>;
     Solver::Settings s;
@@ -175,6 +178,9 @@ main(int argc, char **argv)
                 800.);
   }
 
+  /// A sphere across two periodic faces between sliding walls.
+  void
+  sliding_walls_3d()
   {
     using Solver = Fidus::CutStokesInclusion<3>;
     Solver::Settings s;
@@ -195,6 +201,9 @@ main(int argc, char **argv)
                 200.);
   }
 
+  /// Two discs held in shear at two gaps, level 6: the FGMRES bound.
+  void
+  held_pairs_2d()
   {
     // Two discs a = 0.1 held on the compressional axis of the shear, one
     // cell across the gap, level 6 (36 000 to 38 000 unknowns): FGMRES
@@ -238,6 +247,9 @@ main(int argc, char **argv)
       }
   }
 
+  /// FGMRES capped at 3 iterations: an error naming FGMRES.
+  void
+  capped_fgmres()
   {
     using Solver = Fidus::CutStokesInclusion<3>;
     Solver::Settings s;
@@ -260,5 +272,18 @@ main(int argc, char **argv)
                 1.,
                 1.);
   }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+
+  inclusion_3d();
+  pushed_pair_3d();
+  sliding_walls_2d();
+  sliding_walls_3d();
+  held_pairs_2d();
+  capped_fgmres();
   return exit_code();
 }
