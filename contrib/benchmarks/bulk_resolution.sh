@@ -20,6 +20,7 @@
 # Usage: contrib/benchmarks/bulk_resolution.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
+. "$top/contrib/benchmarks/bulk_scene.sh"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
 fidus="${FIDUS:-$top/build-release/fidus}"
 radius="${RADIUS:-0.0625}"; levels="${LEVELS:-4 5 6}"
@@ -31,18 +32,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 echo "| level | a/h | spheres | unknowns | step | eta_r | lubrication part | contact part | N1 | N2 | Pi | run s |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for level in $levels; do
-  # The coarse mesh has cubes of the box's smallest side: one level less
-  # per halving keeps the finest cell at 1 / 2^level.
-  box_level=$(/usr/bin/python3 -c "import math; print($level + round(math.log2(min($lx, $ly, $lz))))")
   out="$work/run_$level"
-  sed -e "s#^set Output directory.*#set Output directory = $out#" \
-      -e "s#^  set Upper right .*#  set Upper right        = $lx, $ly, $lz#" \
-      -e "s#^    set Radii .*#    set Radii              = $radius#" \
-      -e "s#^  set Initial global refinement.*#  set Initial global refinement = $box_level#" \
-      -e "s#^  set Minimum level .*#  set Minimum level             = $box_level#" \
-      -e "s#^  set Maximum level .*#  set Maximum level             = $box_level#" \
-      -e "s#^  set End time .*#  set End time  = 0.02#" \
-      "$top/prm/rheology_bulk_3d.prm" > "$work/run_$level.prm"
+  bulk_prm "$out" "$lx" "$ly" "$lz" "$level" 0.02 "$radius" \
+    > "$work/run_$level.prm"
   if ! mpirun -np "$np" --oversubscribe "$fidus" "$work/run_$level.prm" > "$work/log_$level" 2>&1; then
     echo "| $level | run failed |"; tail -3 "$work/log_$level"; continue
   fi

@@ -24,6 +24,7 @@
 # Usage: contrib/benchmarks/bulk_scaling.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
+. "$top/contrib/benchmarks/bulk_scene.sh"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
 fidus="${FIDUS:-$top/build-release/fidus}"
 level="${LEVEL:-4}"; steps="${STEPS:-3}"
@@ -36,18 +37,10 @@ echo "| box | spheres | ranks | cells | unknowns | s per step | FGMRES per step 
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for box in $boxes; do
   lx=${box%%:*}; lz=${box#*:}
-  # The coarse mesh has cubes of the box's smallest side: one level less
-  # per halving keeps the finest cell at 1 / 2^LEVEL.
-  box_level=$(/usr/bin/python3 -c "import math; print($level + round(math.log2(min($lx, $lz, 1.))))")
   for np in $nps; do
     out="$work/run_${lx}_${lz}_$np"
-    sed -e "s#^set Output directory.*#set Output directory = $out#" \
-        -e "s#^  set Upper right .*#  set Upper right        = $lx, 1, $lz#" \
-        -e "s#^  set Initial global refinement.*#  set Initial global refinement = $box_level#" \
-        -e "s#^  set Minimum level .*#  set Minimum level             = $box_level#" \
-        -e "s#^  set Maximum level .*#  set Maximum level             = $box_level#" \
-        -e "s#^  set End time .*#  set End time  = $(/usr/bin/python3 -c "print($steps * 0.02)")#" \
-        "$top/prm/rheology_bulk_3d.prm" > "$work/run.prm"
+    bulk_prm "$out" "$lx" 1 "$lz" "$level" \
+      "$(/usr/bin/python3 -c "print($steps * 0.02)")" > "$work/run.prm"
     launch=(mpirun -np "$np" --oversubscribe)
     if ! "${launch[@]}" "$fidus" "$work/run.prm" > "$work/log" 2>&1; then
       echo "| $lx x 1 x $lz | run on $np ranks failed |"; tail -3 "$work/log"; continue

@@ -24,6 +24,7 @@
 # Usage: contrib/benchmarks/bulk_solver.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
+. "$top/contrib/benchmarks/bulk_scene.sh"
 [ -n "${FIDUS:-}" ] || "$top/contrib/build.sh" fidus >/dev/null
 fidus="${FIDUS:-$top/build-release/fidus}"
 level="${LEVEL:-5}"; lx="${LX:-0.5}"; lz="${LZ:-0.5}"
@@ -32,9 +33,6 @@ variants="${VARIANTS:-r 1000|  set Penalty factor = 1000;r 300|  set Penalty fac
 if [ -n "${WORK:-}" ]; then mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
 else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# The coarse mesh has cubes of the box's smallest side: one level less per
-# halving keeps the finest cell at 1 / 2^LEVEL.
-box_level=$(/usr/bin/python3 -c "import math; print($level + round(math.log2(min($lx, $lz, 1.))))")
 
 echo "| variant | spheres | unknowns | Uzawa per step | FGMRES per step | s per step | peak MB per rank | eta_r (last step) | rigidity residual | warnings |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
@@ -44,13 +42,8 @@ for variant in "${list[@]}"; do
   tag="$(echo "$name" | tr -c 'A-Za-z0-9' '_')"
   out="$work/run_$tag"
   {
-    sed -e "s#^set Output directory.*#set Output directory = $out#" \
-        -e "s#^  set Upper right .*#  set Upper right        = $lx, 1, $lz#" \
-        -e "s#^  set Initial global refinement.*#  set Initial global refinement = $box_level#" \
-        -e "s#^  set Minimum level .*#  set Minimum level             = $box_level#" \
-        -e "s#^  set Maximum level .*#  set Maximum level             = $box_level#" \
-        -e "s#^  set End time .*#  set End time  = $(/usr/bin/python3 -c "print($steps * 0.02)")#" \
-        "$top/prm/rheology_bulk_3d.prm"
+    bulk_prm "$out" "$lx" 1 "$lz" "$level" \
+      "$(/usr/bin/python3 -c "print($steps * 0.02)")"
     printf "subsection Fluid\n%b\nend\n" "$entries"
   } > "$work/run_$tag.prm"
   if ! mpirun -np "$np" --oversubscribe "$fidus" "$work/run_$tag.prm" > "$work/log_$tag" 2>&1; then
