@@ -790,22 +790,21 @@ namespace Fidus
           dsp.add(n_total, i);
         }
     dsp.add(n_total, n_total);
-    SparsityPattern bordered_sparsity;
-    bordered_sparsity.copy_from(dsp);
-    SparseMatrix<double> bordered(bordered_sparsity);
+    // Filled in Trilinos' matrix directly: no second copy of the system.
+    const IndexSet                 all = complete_index_set(n);
+    TrilinosWrappers::SparseMatrix trilinos_matrix;
+    trilinos_matrix.reinit(all, all, dsp, MPI_COMM_SELF);
     for (unsigned int i = 0; i < n_total; ++i)
       for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-        bordered.set(i, it->column(), it->value());
+        trilinos_matrix.set(i, it->column(), it->value());
     for (unsigned int i = 0; i < n_total; ++i)
       if (scaled_mean[i] != 0.)
         {
-          bordered.set(i, n_total, scaled_mean[i]);
-          bordered.set(n_total, i, scaled_mean[i]);
+          trilinos_matrix.set(i, n_total, scaled_mean[i]);
+          trilinos_matrix.set(n_total, i, scaled_mean[i]);
         }
-    bordered.set(n_total, n_total, 1.);
-    TrilinosWrappers::SparseMatrix trilinos_matrix;
-    trilinos_matrix.reinit(bordered);
-    const IndexSet                all = complete_index_set(n);
+    trilinos_matrix.set(n_total, n_total, 1.);
+    trilinos_matrix.compress(VectorOperation::insert);
     TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF), b(all, MPI_COMM_SELF);
     SolverControl                 control;
     std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
