@@ -9,6 +9,7 @@
 #include <deal.II/multigrid/mg_transfer_global_coarsening.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
+#include <fidus/fluid/cut_element/galerkin_product.h>
 #include <stdexcept>
 #include <utility>
 
@@ -250,13 +251,12 @@ namespace Fidus
         // A_{l+1} = P^T A_l P. Unknowns that reach no fluid (inside a
         // particle) or are constrained have empty rows: a unit diagonal
         // keeps them decoupled and zero.
-        SparsityPattern      product_pattern;
-        SparseMatrix<double> product(product_pattern);
-        level_matrix(l).mmult(product, *prolongation.back());
         coarse_pattern.push_back(std::make_unique<SparsityPattern>());
-        coarse.push_back(
-          std::make_unique<SparseMatrix<double>>(*coarse_pattern.back()));
-        prolongation.back()->Tmmult(*coarse.back(), product);
+        coarse.push_back(std::make_unique<SparseMatrix<double>>());
+        galerkin_product(level_matrix(l),
+                         *prolongation.back(),
+                         *coarse_pattern.back(),
+                         *coarse.back());
         for (unsigned int i = 0; i < coarse.back()->m(); ++i)
           if (coarse.back()->diag_element(i) == 0.)
             coarse.back()->diag_element(i) = 1.;

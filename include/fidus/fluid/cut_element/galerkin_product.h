@@ -1,0 +1,31 @@
+#ifndef fidus_fluid_cut_element_galerkin_product_h
+#define fidus_fluid_cut_element_galerkin_product_h
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The Galerkin coarse operator C = P^T A P of a square sparse @p a
+   * (n × n) and a prolongation @p p (n × m): @p pattern becomes C's
+   * sparsity pattern (with every diagonal entry) and @p c is reinitialised
+   * on it.
+   *
+   * Both products are formed row by row with a dense accumulator over the
+   * columns (Gustavson's algorithm): A P first, then P^T (A P) from the
+   * transpose of P. deal.II's SparseMatrix::mmult and Tmmult build their
+   * patterns through a DynamicSparsityPattern, which was half of a 3D cut
+   * element solve's time and most of its peak memory
+   * (doc/history/cut_element.md, "The multigrid's set-up").
+   */
+  void
+  galerkin_product(const SparseMatrix<double> &a,
+                   const SparseMatrix<double> &p,
+                   SparsityPattern            &pattern,
+                   SparseMatrix<double>       &c);
+} // namespace Fidus
+
+#endif
