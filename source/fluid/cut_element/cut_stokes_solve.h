@@ -22,6 +22,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/non_matching/quadrature_generator.h>
+#include <fidus/core/memory_usage.h>
 #include <fidus/fluid/cut_element/cut_mesh.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
@@ -93,6 +94,8 @@ namespace Fidus
       setup_dofs_and_constraints();
       find_ghost_penalty_faces();
       make_sparsity_pattern();
+      // The pattern's scratch is freed in many small blocks.
+      MemoryUsage::release_free_memory();
       setup_system();
       assemble_cells();
       assemble_ghost_penalties();
