@@ -125,15 +125,6 @@ namespace Fidus
                        "solve touching particles)");
     if (!scene.lubrication.enabled)
       return;
-    // The coupling is written for both dimensions, but only the 2D one has
-    // been measured against resolved gaps (a 3D pair at 0.02 a, level 4,
-    // did not finish its first solve in an hour on a loaded machine).
-    if (scene.dimension == 3)
-      throw InputError("entry 'Fluid/Lubrication correction' is true with " +
-                       model +
-                       " in 3D; allowed: false in 3D (the correction inside "
-                       "the cut element's solve is validated in 2D only, "
-                       "doc/theory/lubrication.md)");
     if (!ranges_set.empty())
       throw InputError("entry 'Fluid/" + ranges_set.front() + "' is set with " +
                        model +
