@@ -53,8 +53,6 @@ expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value '
 expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \
   "$(base; cut_fluid '  set Lubrication correction = true
   set Lubrication range = 0.5')"
-expect_error "cut element with lubrication in 3D" "Fluid/Lubrication correction' is true with 'Fluid/Model = cut finite element' in 3D; allowed: false in 3D" \
-  "$(base | sed 's/set Dimension *= *2/set Dimension = 3/; s/0.451, 0.51; 0.549, 0.49/0.451, 0.51, 0.5; 0.549, 0.49, 0.5/'; cut_fluid '  set Lubrication correction = true'; printf 'subsection Domain\n  set Lower left = 0, 0, 0\n  set Upper right = 1, 1, 1\nend\n')"
 expect_error "cut element lubricated below the roughness" "Fluid/Cut minimum gap' has the value 0.001 with 'Fluid/Lubrication correction' and 'Contact/Roughness = 0.005'; allowed: a gap above the roughness" \
   "$(base; cut_fluid '  set Lubrication correction = true
   set Cut minimum gap = 1e-3')"
