@@ -1,10 +1,11 @@
 # The quick subset (ctest -L quick, contrib/test.sh -L quick): the tests a
-# developer runs after every edit: 24 tests, 70 s on 2 cores with
-# everything built (measured 2026-11-27 at 4e44d41). They cover each module at its cheapest: the contact
+# developer runs after every edit: 27 tests, 45 s on 2 cores with
+# everything built (measured 2026-11-29 at 9d15913). They cover each module at its cheapest: the contact
 # library (KKT conditions, pair search, glue), the time loop through the
 # FluidModel interface with exact answers, the paper's 2D pair through the
 # program with the three contact models, the run state, the Uzawa loop on
-# its model problem, the contact stress, bad input, the documentation and
+# its model problem, the cut element's coarse operators, the contact
+# stress, bad input, the documentation and
 # the style. Include after deal_ii_pickup_tests() with the names (without
 # the .release suffix) in FIDUS_QUICK_TESTS.
 get_filename_component(_category ${CMAKE_CURRENT_SOURCE_DIR} NAME)
