@@ -24,9 +24,11 @@
 # (Lubrication flow range, default auto; 0.3 gives the correction as it was
 # before the flow range existed, commit 3ac5e56), TANGENTIAL
 # (Lubrication tangential terms, default true), RIGIDITY (Rigidity tolerance,
-# default 1e-4), MAX_UZAWA (default 10), NP (MPI
-# ranks per run, default 1), JOBS (runs at a time, default 1), WORK (keep the
-# runs there), FIDUS.
+# default 1e-4), MAX_UZAWA (default 10), RETRACTION (Solid retraction,
+# default: fidus's), FLOW_EDGE (Lubrication flow edge, default auto), NP (MPI
+# ranks per run, default 1), JOBS (runs at a time, default 1), SHIFT (the
+# pair's midpoint moved off the mesh vertex (1/2, 1/2) by "sx sy" finest
+# cells, default "0 0"), WORK (keep the runs there), FIDUS.
 # Usage: contrib/benchmarks/shear_pair_velocity.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -47,7 +49,9 @@ import math
 a, g, th = $a, $gap, math.radians($angle)
 s = a + 0.5 * g * a
 dx, dy = s * math.cos(th), s * math.sin(th)
-print('%.15f, %.15f, 0.5; %.15f, %.15f, 0.5' % (0.5 - dx, 0.5 - dy, 0.5 + dx, 0.5 + dy))")
+sx, sy = (float(v) * 0.5 ** $level for v in '${SHIFT:-0 0}'.split())
+cx, cy = 0.5 + sx, 0.5 + sy
+print('%.15f, %.15f, 0.5; %.15f, %.15f, 0.5' % (cx - dx, cy - dy, cx + dx, cy + dy))")
   cat > "$work/$name.prm" <<PRM
 set Dimension = 3
 set Output directory = $work/$name
@@ -65,6 +69,8 @@ subsection Fluid
   set Lubrication correction = true
   set Lubrication range = ${RANGE:-auto}
   set Lubrication flow range = ${FLOW_RANGE:-auto}
+  set Lubrication flow edge = ${FLOW_EDGE:-auto}
+${RETRACTION:+  set Solid retraction = $RETRACTION}
   set Lubrication tangential terms = ${TANGENTIAL:-true}
   subsection Linear solver
     set Tolerance = 1e-9

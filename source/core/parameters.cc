@@ -144,7 +144,7 @@ namespace Fidus
     fluid.parse(prm);
     cut_element.parse(prm);
     fictitious_domain.parse(prm, dimension, fluid.velocity_degree);
-    lubrication.parse(prm, dimension);
+    lubrication.parse(prm, dimension, fictitious_domain.solid_retraction);
     particles.parse(prm, dimension, domain, input_name);
     contact.parse(prm);
     // A pair closer than a cell is released where something else keeps it

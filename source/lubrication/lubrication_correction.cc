@@ -556,6 +556,7 @@ namespace Fidus::Contact
                                           const double     a_small,
                                           const double     range,
                                           const double     flow_range,
+                                          const double     flow_edge,
                                           const double     tangential_range,
                                           LubricationStatistics &stat) const
   {
@@ -576,8 +577,13 @@ namespace Fidus::Contact
                                                             std::max(gap, r));
     };
     b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
-    b.r_resolved       = resolved(flow_range);
-    b.r_resolved_force = resolved(range);
+    // The flow's resolved gap: a step at h_f, or the ramp from h_f at
+    // contact to the true gap at the edge h_o.
+    const double flow_gap = flow_edge > flow_range && gap < flow_edge ?
+                              flow_range + (1. - flow_range / flow_edge) * gap :
+                              flow_range;
+    b.r_resolved          = resolved(flow_gap);
+    b.r_resolved_force    = resolved(range);
     if (settings.tangential)
       {
         b.t_true     = tangential_resistance(dim,
@@ -610,6 +616,7 @@ namespace Fidus::Contact
     const double      h_c = settings.range;
     const double      h_f =
       settings.flow_range >= 0. ? settings.flow_range : settings.range;
+    const double h_o = std::max(h_f, settings.flow_edge);
     const double h_w =
       settings.wall_range >= 0. ? settings.wall_range : settings.range;
     const double h_t =
@@ -627,7 +634,7 @@ namespace Fidus::Contact
     const double h_pairs =
       fraction > 0. ?
         fraction * a_max :
-        std::max(std::max(h_c, h_f), settings.tangential ? h_t : 0.);
+        std::max(std::max(h_c, h_o), settings.tangential ? h_t : 0.);
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, h_pairs, pairs);
     for (const auto &[i, j] : pairs)
@@ -647,8 +654,8 @@ namespace Fidus::Contact
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
         if (fraction > 0. ?
-              fill_resistances(b, a_small, h_bond, h_bond, h_bond, stat) :
-              fill_resistances(b, a_small, h_c, h_f, h_t, stat))
+              fill_resistances(b, a_small, h_bond, h_bond, 0., h_bond, stat) :
+              fill_resistances(b, a_small, h_c, h_f, h_o, h_t, stat))
           {
             bond.push_back(b);
             ++stat.n_pairs;
@@ -675,8 +682,14 @@ namespace Fidus::Contact
             wall_velocity_at ? wall_velocity_at(wall, foot) : wall.velocity;
           b.wall_velocity[wall.axis] = 0.;
           if (fraction > 0. ?
-                fill_resistances(b, radii[i], h_bond, h_bond, h_bond, stat) :
-                fill_resistances(b, radii[i], h_w, h_w, h_wt, stat))
+                fill_resistances(b,
+                                 radii[i],
+                                 h_bond,
+                                 h_bond,
+                                 0.,
+                                 h_bond,
+                                 stat) :
+                fill_resistances(b, radii[i], h_w, h_w, 0., h_wt, stat))
             {
               bond.push_back(b);
               ++stat.n_wall_pairs;

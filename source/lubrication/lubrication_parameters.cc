@@ -6,6 +6,7 @@
 #include <fidus/core/parameter_parsing.h>
 #include <fidus/lubrication/lubrication_parameters.h>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace Fidus
@@ -72,19 +73,59 @@ namespace Fidus
       "two particles, > 0. The mesh resists a flow-driven approach less "
       "than a force-driven one, so the correction treats the part of the "
       "fluid's velocities that 'Particles/External force' drives with "
-      "'Lubrication range' and the rest with this one. auto: 0.45 in 3D, "
-      "measured on two spheres held in shear against Batchelor & Green, "
-      "and 2 in 2D, chosen on a lubricated pair in shear, which it keeps "
-      "from overlapping at every level (two discs held in shear would "
-      "want 0.7-1; doc/lubrication.md says why it stays).");
+      "'Lubrication range' and the rest with this one; in 3D the gap the "
+      "mesh shows rises from this one at contact to 'Lubrication flow "
+      "edge'. auto: in 3D 0.54 at 'Solid retraction = 0' and 0.62 at 0.3, "
+      "linear in the retraction, fitted with the edge on two spheres held "
+      "in shear against Batchelor & Green; 2 in 2D, chosen on a "
+      "lubricated pair in shear, which it keeps from overlapping at every "
+      "level (two discs held in shear would want 0.7-1; "
+      "doc/lubrication.md says why it stays).");
+    prm.declare_entry(
+      "Lubrication flow edge",
+      "auto",
+      Patterns::Anything(),
+      "Gap, in finest cell sizes, at which the mesh's response to a "
+      "flow-driven approach starts to miss the squeeze, >= 'Lubrication "
+      "flow range'. Below it the correction takes the fluid solve to show "
+      "the squeeze of a gap that rises linearly from the flow range at "
+      "contact to this gap; equal to the flow range, it shows the flow "
+      "range's squeeze at every gap below it (a step). auto: with an auto "
+      "flow range in 3D, 0.74 at 'Solid retraction = 0' and 0.87 at 0.3, "
+      "linear in the retraction, fitted with it on two spheres held in "
+      "shear against Batchelor & Green at gaps from 0.02a to 0.5a and "
+      "generic positions in the mesh; otherwise the flow range "
+      "(doc/theory/lubrication.md).");
     prm.leave_subsection();
   }
 
 
 
-  void
-  LubricationParameters::parse(ParameterHandler &prm, const unsigned int dim)
+  namespace
   {
+    /// The 3D flow range and edge, in finest cells, for the solid
+    /// retraction @p c: fitted together on two spheres held in shear at
+    /// generic positions in the mesh at c = 0 and c = 0.3, linear in c
+    /// (doc/theory/lubrication.md, "Two ranges"). A retracted solid leaves
+    /// more of each surface's cells to the fluid, so the mesh loses the
+    /// squeeze further out.
+    std::pair<double, double>
+    auto_flow_gaps_3d(const double c)
+    {
+      const double s = c / 0.3;
+      return {0.54 + (0.62 - 0.54) * s, 0.74 + (0.87 - 0.74) * s};
+    }
+  } // namespace
+
+
+
+  void
+  LubricationParameters::parse(ParameterHandler  &prm,
+                               const unsigned int dim,
+                               const double       solid_retraction)
+  {
+    const auto [auto_flow_range_3d, auto_flow_edge_3d] =
+      auto_flow_gaps_3d(solid_retraction);
     prm.enter_subsection("Fluid");
     enabled = prm.get_bool("Lubrication correction");
     // An entry that is 'auto' (then {auto_pairs, auto_walls}), one gap
@@ -126,7 +167,16 @@ namespace Fidus
     flow_range = ParameterParsing::number_or_auto(
       prm.get("Lubrication flow range"),
       "Fluid/Lubrication flow range",
-      dim == 3 ? 0.45 : 2.,
+      dim == 3 ? auto_flow_range_3d : 2.,
+      "auto or one gap in finest cell sizes > 0");
+    // The ramp's edge in 3D is fitted on held sheared pairs; 2D keeps the
+    // step (doc/theory/lubrication.md).
+    const bool flow_range_auto =
+      Utilities::trim(prm.get("Lubrication flow range")) == "auto";
+    flow_edge = ParameterParsing::number_or_auto(
+      prm.get("Lubrication flow edge"),
+      "Fluid/Lubrication flow edge",
+      dim == 3 && flow_range_auto ? auto_flow_edge_3d : flow_range,
       "auto or one gap in finest cell sizes > 0");
     tangential = prm.get_bool("Lubrication tangential terms");
     prm.leave_subsection();
@@ -152,6 +202,14 @@ namespace Fidus
     require_gap("Lubrication flow range", flow_range);
     require_gap("Lubrication tangential range", tangential_range);
     require_gap("Lubrication tangential range", wall_tangential_range);
+    if (enabled && flow_edge < flow_range)
+      {
+        std::ostringstream m;
+        m << "entry 'Fluid/Lubrication flow edge' has the value " << flow_edge
+          << ", below 'Fluid/Lubrication flow range' = " << flow_range
+          << "; allowed: a gap in finest cell sizes >= the flow range";
+        throw InputError(m.str());
+      }
   }
 
 
@@ -170,6 +228,7 @@ namespace Fidus
     ls.range                 = range * h;
     ls.wall_range            = wall_range * h;
     ls.flow_range            = flow_range * h;
+    ls.flow_edge             = flow_edge * h;
     ls.tangential_range      = tangential_range * h;
     ls.tangential_wall_range = wall_tangential_range * h;
     ls.roughness             = roughness;

@@ -7,12 +7,14 @@
 // contrib/benchmarks/batchelor_green.py), and are sheared for 3 time units,
 // through the closest approach (exact: gap 7.37e-3 a, 1.89 into this run).
 // Maximum level 5 (a/h = 1.6), released shared cells with the correction
-// (retraction 0, in which its ranges were measured), inelastic contact,
+// (retraction 0), inelastic contact,
 // steps of 0.1.
-// - The smallest gap is between 0.2 and 2 times the exact one (measured
-//   0.35 times, 2.6e-3 a, on 2026-11-28; the goal is a factor 2,
-//   not reached). The same run without the correction closes to 0.14
-//   times the exact gap, outside.
+// - The smallest gap is between 0.4 and 2 times the exact one: 0.44 with
+//   the 3D flow range's ramp (Lubrication flow edge), 0.35 with the step
+//   it replaced, 0.14 without the correction, all outside at the lower
+//   end but the first. Level 5 is coarser than the level 6 on which the
+//   ramp was fitted, and the default roughness (5e-3 a) caps the
+//   resistance just below the exact gap.
 // - The correction acted, and the pair passes: at the end the second
 //   sphere, which started downstream, is upstream of the first.
 
@@ -54,7 +56,7 @@ main(int argc, char **argv)
 
   check_range("smallest gap / exact smallest gap (Batchelor & Green)",
               s.min_gap / exact_gap,
-              0.2,
+              0.4,
               2.);
   check_range("the pair passes: x1 - x0 at the end, over 2a",
               (s.positions[1][0] - s.positions[0][0]) / (2. * a),

@@ -94,6 +94,8 @@ expect_error "lubrication range three numbers" "Fluid/Lubrication range' has the
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication range = 1, 2, 3\nend\n')"
 expect_error "lubrication flow range 0" "Fluid/Lubrication flow range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication flow range = 0\nend\n')"
+expect_error "lubrication flow edge below the flow range" "Fluid/Lubrication flow edge' has the value 0.3, below 'Fluid/Lubrication flow range' = 0.5; allowed: a gap in finest cell sizes >= the flow range" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication flow range = 0.5\n  set Lubrication flow edge = 0.3\nend\n')"
 expect_error "lubrication wall tangential range 0" "Fluid/Lubrication tangential range' has the value 0.*allowed: a gap in finest cell sizes > 0" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication tangential range = 1, 0\nend\n')"
 expect_error "negative roughness" "Roughness" \

@@ -25,6 +25,12 @@
 //    the pairs' squeeze range and their tangential range (tangential_range):
 //    the closing speed is the predicted one, the relative sliding is
 //    slowed, and beyond both ranges nothing changes (1e-12).
+// h. The flow's resolved gap as a ramp (LubricationSettings::flow_edge
+//    h_o > h_f): a predicted closing speed 2D / (zeta + 2 R(g)), g = h_f +
+//    (1 - h_f / h_o) h, becomes 2D / (zeta + 2 R(h)) at a gap below h_f and
+//    at one between h_f and h_o (1e-12); just below h_o the change vanishes
+//    with the distance to h_o (continuity), and at h_o and beyond u = u*;
+//    forces between h_c and h_o keep u = u* (1e-12).
 
 #include "test_tools.h"
 
@@ -44,13 +50,17 @@ namespace
   /// The settings of every case: exact squeeze (no roughness), with the
   /// tangential terms.
   LubricationSettings
-  settings(const unsigned dim, const double h_c, const double h_f)
+  settings(const unsigned dim,
+           const double   h_c,
+           const double   h_f,
+           const double   h_o = -1.)
   {
     LubricationSettings s;
     s.dimension  = dim;
     s.viscosity  = eta;
     s.range      = h_c;
     s.flow_range = h_f;
+    s.flow_edge  = h_o;
     s.roughness  = 0.;
     s.tangential = true;
     return s;
@@ -74,9 +84,10 @@ namespace
             const double   closing_star,
             const double   force,
             double        &bond_force,
-            double        &velocity_change)
+            double        &velocity_change,
+            const double   h_o = -1.)
   {
-    LubricationCorrection   lub(settings(dim, h_c, h_f));
+    LubricationCorrection   lub(settings(dim, h_c, h_f, h_o));
     const std::vector<Vec3> x = {{{0.3, 0.4, 0.}},
                                  {{0.3 + 2 * a + h, 0.4, 0.}}};
     if (force != 0.)
@@ -196,6 +207,64 @@ main()
             std::abs(pass_between[0] - 0.04) < 1e-12 && pass_between[1] < 0.3 &&
               pass_between[1] > 0. && std::abs(pass_beyond[0] - 0.04) < 1e-12 &&
               std::abs(pass_beyond[1] - 0.3) < 1e-12);
+
+      // h. The ramp from h_f at contact to the true gap at h_o.
+      const double h_o  = 2. * h_f;
+      const auto   ramp = [&](const double gap) {
+        return gap < h_o ? h_f + (1. - h_f / h_o) * gap : gap;
+      };
+      bool ramp_ok = true;
+      for (const double gap : {h, 0.5 * (h_f + h_o)})
+        {
+          const double v = corrected(dim,
+                                     gap,
+                                     h_c,
+                                     h_f,
+                                     speed(drive, ramp(gap)),
+                                     0.,
+                                     f_bond,
+                                     change,
+                                     h_o);
+          ramp_ok &=
+            std::abs(v - speed(drive, gap)) < 1e-12 * speed(drive, gap);
+        }
+      double       change_near = 0., change_at = 0.;
+      const double near = h_o * (1. - 1e-6);
+      corrected(dim,
+                near,
+                h_c,
+                h_f,
+                speed(drive, near),
+                0.,
+                f_bond,
+                change_near,
+                h_o);
+      corrected(dim,
+                h_o,
+                h_c,
+                h_f,
+                speed(drive, h_o),
+                0.,
+                f_bond,
+                change_at,
+                h_o);
+      const double forced_edge = corrected(dim,
+                                           0.5 * (h_f + h_o),
+                                           h_c,
+                                           h_f,
+                                           speed(force, 0.5 * (h_f + h_o)),
+                                           force,
+                                           f_bond,
+                                           change,
+                                           h_o);
+      check(D + "h. flow ramp h_f -> h_o: 2D / (zeta + 2 R(g)) becomes "
+                "2D / (zeta + 2 R(h)) below and above h_f; continuous at "
+                "h_o; forces between h_c and h_o: u = u*",
+            ramp_ok &&
+              std::abs(change_near) < 1e-5 * zeta * speed(drive, near) &&
+              change_at == 0. &&
+              std::abs(forced_edge - speed(force, 0.5 * (h_f + h_o))) <
+                1e-12 * speed(force, h_o));
     }
   return 0;
 }

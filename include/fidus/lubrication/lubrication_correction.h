@@ -33,9 +33,18 @@ namespace Fidus::Contact
     /// driven by the external forces (set_external_forces()) from range,
     /// the rest from flow_range.
     double flow_range = -1.;
+    /// Gap h_o (length) at which the flow's resolved gap meets the true
+    /// one: below it the fluid solve is taken to show, for a flow-driven
+    /// approach, the squeeze resistance of the gap h_f + (1 - h_f / h_o) h,
+    /// which rises linearly from flow_range at contact to h_o. The mesh
+    /// loses the flow-driven squeeze gradually from about two thirds of a
+    /// cell, not at once at h_f (doc/theory/lubrication.md). <= flow_range:
+    /// the step max(h, h_f).
+    double flow_edge = -1.;
     /// Gap (length) down to which the mesh carries the tangential
     /// resistance of two particles sliding past each other; < 0: the same
-    /// as range. Pair bonds reach out to the largest of range, flow_range
+    /// as range. Pair bonds reach out to the largest of range, flow_range,
+    /// flow_edge
     /// and this one.
     double tangential_range = -1.;
     /// Gap (length) down to which the mesh carries the tangential
@@ -419,12 +428,15 @@ namespace Fidus::Contact
 
     /// Sets the true and resolved resistances of bond @p b (gap floored at
     /// the roughness of @p a_small) and says whether the bond is kept: the
-    /// same test for particle pairs and walls, hence one function.
+    /// same test for particle pairs and walls, hence one function. The
+    /// flow's resolved gap rises from @p flow_range to @p flow_edge (a
+    /// step if flow_edge <= flow_range; LubricationSettings::flow_edge).
     bool
     fill_resistances(LubricationBond       &b,
                      double                 a_small,
                      double                 range,
                      double                 flow_range,
+                     double                 flow_edge,
                      double                 tangential_range,
                      LubricationStatistics &stat) const;
 

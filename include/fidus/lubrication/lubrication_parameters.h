@@ -23,9 +23,13 @@ namespace Fidus
     static void
     declare(dealii::ParameterHandler &prm);
 
-    /// Read them back, 'auto' resolved for @p dim dimensions.
+    /// Read them back, 'auto' resolved for @p dim dimensions and the
+    /// fictitious domain's @p solid_retraction (Fluid/Solid retraction, in
+    /// finest cells: the 3D flow range and edge depend on it).
     void
-    parse(dealii::ParameterHandler &prm, const unsigned int dim);
+    parse(dealii::ParameterHandler &prm,
+          const unsigned int        dim,
+          double                    solid_retraction);
 
     /// With the correction on, throw an InputError for a range that is not
     /// positive.
@@ -54,6 +58,9 @@ namespace Fidus
     /// The pairs' range in the fluid solve's response to the flow
     /// (Fluid/Lubrication flow range).
     double flow_range = 2.;
+    /// The gap where the flow's resolved gap meets the true one
+    /// (Fluid/Lubrication flow edge); equal to flow_range: a step.
+    double flow_edge = 2.;
     /// Fluid/Lubrication tangential range of particle pairs and of
     /// particle-wall gaps.
     double tangential_range      = 2.;

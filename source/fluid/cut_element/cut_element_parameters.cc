@@ -75,6 +75,7 @@ namespace Fidus
       ranges_set.clear();
       for (const char *entry : {"Lubrication range",
                                 "Lubrication flow range",
+                                "Lubrication flow edge",
                                 "Lubrication tangential range"})
         if (Utilities::trim(prm.get(entry)) != "auto")
           ranges_set.emplace_back(entry);
