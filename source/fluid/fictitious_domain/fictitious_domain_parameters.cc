@@ -86,6 +86,15 @@ namespace Fidus
                       Patterns::Integer(1, 10000),
                       "Uzawa iterations per solve before a warning, >= 1.");
     prm.declare_entry(
+      "Uzawa acceleration depth",
+      "0",
+      Patterns::Integer(0, 20),
+      "Anderson acceleration of the Uzawa loop: each multiplier update "
+      "combines the last iterates so that the strain left in the solid is "
+      "least (GMRES on the loop's fixed point), instead of the plain "
+      "update lambda += rho u. The number of earlier iterates kept; 0: the "
+      "plain update (doc/theory/fictitious_domain.md, 'The Uzawa loop').");
+    prm.declare_entry(
       "Reuse multiplier",
       "auto",
       Patterns::Selection("true|false|auto"),
@@ -330,6 +339,7 @@ namespace Fidus
     rigid_velocity_tolerance = prm.get_double("Rigid velocity tolerance");
     sliver_threshold         = prm.get_double("Sliver threshold");
     max_uzawa_iterations     = prm.get_integer("Maximum Uzawa iterations");
+    uzawa_acceleration_depth = prm.get_integer("Uzawa acceleration depth");
     reuse_choice             = prm.get("Reuse multiplier");
     shared_cells_choice      = prm.get("Shared cells");
     solid_retraction         = prm.get_double("Solid retraction");

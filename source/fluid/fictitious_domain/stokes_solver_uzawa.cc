@@ -12,7 +12,9 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/vector.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <deque>
 #include <fidus/core/input_error.h>
+#include <fidus/fluid/fictitious_domain/anderson_mixing.h>
 #include <fidus/fluid/fictitious_domain/block_schur_preconditioner.h>
 #include <fidus/fluid/fictitious_domain/deflated_velocity_preconditioner.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode_correction.h>
@@ -86,6 +88,62 @@ namespace Fidus
 
 
 
+  template <int dim>
+  std::vector<double>
+  StokesSolver<dim>::held_strain_products(
+    const SolidIndicator<dim>                                     &solid,
+    const TrilinosWrappers::MPI::BlockVector                      &v,
+    const std::vector<const TrilinosWrappers::MPI::BlockVector *> &w) const
+  {
+    FEValues<dim>                                     fe_values(fe,
+                            quadrature,
+                            update_gradients | update_quadrature_points |
+                              update_JxW_values);
+    const FEValuesExtractors::Vector                  velocities(0);
+    std::vector<SymmetricTensor<2, dim>>              eps_v(quadrature.size());
+    std::vector<std::vector<SymmetricTensor<2, dim>>> eps_w(
+      w.size(),
+      std::vector<SymmetricTensor<2, dim>>(quadrature.size()));
+    std::vector<double>       weight(quadrature.size());
+    std::vector<unsigned int> cands;
+    std::vector<double>       sums(w.size() + 1, 0.);
+    for (const auto &cell : cells)
+      if (cell->is_locally_owned() && !shared[cell->active_cell_index()] &&
+          !sliver[cell->active_cell_index()])
+        {
+          solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+          if (cands.empty())
+            continue;
+          fe_values.reinit(cell);
+          bool any = false;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              int k = -1;
+              weight[q] =
+                solid.fraction(fe_values.quadrature_point(q), cands, k) *
+                fe_values.JxW(q);
+              any = any || weight[q] != 0.;
+            }
+          if (!any)
+            continue;
+          fe_values[velocities].get_function_symmetric_gradients(v, eps_v);
+          for (unsigned int i = 0; i < w.size(); ++i)
+            fe_values[velocities].get_function_symmetric_gradients(*w[i],
+                                                                   eps_w[i]);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            if (weight[q] != 0.)
+              {
+                for (unsigned int i = 0; i < w.size(); ++i)
+                  sums[i] += weight[q] * (eps_v[q] * eps_w[i][q]);
+                sums.back() += weight[q] * (eps_v[q] * eps_v[q]);
+              }
+        }
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    return sums;
+  }
+
+
+
   /**
    * StokesSolver as the problem of the Uzawa loop: the multiplier's load,
    * one FGMRES solve, the strain left in the solid, the rigid motions and
@@ -104,6 +162,7 @@ namespace Fidus
       , update(solver.distributed_multiplier.block(0))
       , rho(2. * (solver.settings.penalty_factor - 1.) *
             solver.settings.viscosity)
+      , mixing(solver.settings.uzawa_acceleration_depth)
     {}
 
     void
@@ -144,21 +203,72 @@ namespace Fidus
     void
     update_multiplier() override
     {
-      // lambda += rho M u, in place, on the held solid's DoFs only.
       TrilinosWrappers::MPI::Vector &x = solver.distributed_multiplier.block(0);
-      update                           = solver.distributed_solution.block(0);
-      update.scale(solver.solid_mask.block(0));
-      x.add(rho, update);
+      if (mixing.depth() == 0)
+        {
+          // lambda += rho M u, in place, on the held solid's DoFs only.
+          update = solver.distributed_solution.block(0);
+          update.scale(solver.solid_mask.block(0));
+          x.add(rho, update);
+        }
+      else
+        accelerated_update(x);
       solver.multiplier = solver.distributed_multiplier;
     }
 
   private:
+    /**
+     * Anderson's update: with u_i = u(lambda_i) the last iterates' velocities
+     * and alpha the weights (sum 1) that make the strain of sum alpha_i u_i
+     * in the held solid least, lambda = sum alpha_i (lambda_i + rho M u_i).
+     * The map lambda -> u(lambda) is affine, so sum alpha_i u_i is the
+     * velocity of sum alpha_i lambda_i, and the update is the plain one
+     * from that better multiplier. The strain is measured in the inner
+     * product of Residual::held, which ignores the rigid motions that
+     * lambda accumulates (they load nothing).
+     */
+    void
+    accelerated_update(TrilinosWrappers::MPI::Vector &x)
+    {
+      if (mixing.size() == mixing.depth() + 1)
+        {
+          mixing.drop_oldest();
+          multipliers.pop_front();
+          velocities.pop_front();
+        }
+      std::vector<const TrilinosWrappers::MPI::BlockVector *> earlier;
+      for (const auto &u : velocities)
+        earlier.push_back(&u);
+      mixing.push(solver.held_strain_products(solid, solver.solution, earlier));
+      multipliers.push_back(x);
+      velocities.push_back(solver.solution);
+
+      const std::vector<double> alpha = mixing.weights();
+      x                               = 0.;
+      update                          = 0.;
+      for (unsigned int i = 0; i < alpha.size(); ++i)
+        {
+          x.add(alpha[i], multipliers[i]);
+          // From the ghosted copy into the owned layout (an import).
+          owned_velocity = velocities[i].block(0);
+          update.add(alpha[i], owned_velocity);
+        }
+      update.scale(solver.solid_mask.block(0));
+      x.add(rho, update);
+    }
+
     StokesSolver<dim>         &solver;
     const SolidIndicator<dim> &solid;
     Statistics                &stats;
     /// The masked velocity of the update, allocated once per solve.
     TrilinosWrappers::MPI::Vector update;
     const double                  rho;
+    /// Anderson acceleration (Settings::uzawa_acceleration_depth > 0): the
+    /// weights, and the iterates they combine, oldest first.
+    AndersonMixing                                 mixing;
+    std::deque<TrilinosWrappers::MPI::Vector>      multipliers;
+    std::deque<TrilinosWrappers::MPI::BlockVector> velocities;
+    TrilinosWrappers::MPI::Vector                  owned_velocity{update};
   };
 
 

@@ -62,6 +62,9 @@ namespace Fidus
     /// rigid by the penalty alone, not by the multiplier (0: off).
     double       sliver_threshold     = 0.;
     unsigned int max_uzawa_iterations = 50;
+    /// Anderson acceleration of the Uzawa loop: how many earlier iterates
+    /// the multiplier's update combines (0: the plain update).
+    unsigned int uzawa_acceleration_depth = 0;
     /// Start the Uzawa loop from the previous step's multiplier.
     bool reuse_multiplier = true;
     /// Treat the solid part of shared cells (within half a cell diameter of

@@ -304,6 +304,14 @@ namespace Fidus
     /// (UzawaProblem::Residual).
     UzawaProblem::Residual
     rigidity_residual(const SolidIndicator<dim> &solid) const;
+    /// The products int phi e(v):e(w_i) over the held solid (the inner
+    /// product behind Residual::held) of @p v with each @p w_i, then of
+    /// @p v with itself; all with ghost entries.
+    std::vector<double>
+    held_strain_products(
+      const SolidIndicator<dim>                                     &solid,
+      const TrilinosWrappers::MPI::BlockVector                      &v,
+      const std::vector<const TrilinosWrappers::MPI::BlockVector *> &w) const;
     /// The solver seen as the problem UzawaLoop iterates on
     /// (stokes_solver_uzawa.cc).
     class Uzawa;
