@@ -8,9 +8,11 @@
 #
 # A variant is "name|entries": the entries (prm lines, \n between them)
 # are appended to the scene, so they override its settings. The default
-# variants are the penalty factors 1000 (fidus's default), 300, 100 and 30,
-# and 1000 with the velocity block solved inside every FGMRES step
-# ('Maximum cheap iterations = 0').
+# variants: the plain Uzawa loop ('Uzawa acceleration depth = 0') at the
+# penalty factors 1000 (fidus's default), 300 and 100; the accelerated
+# loop (depth 3, the scene's) at 100 (the scene's) and 30; and 1000 with
+# the velocity block solved inside every FGMRES step ('Maximum cheap
+# iterations = 0').
 #
 # Printed per variant, per step after step 0 (the mean): Uzawa
 # iterations, FGMRES iterations, wall seconds; the peak memory of the
@@ -29,7 +31,7 @@ top="$(cd "$(dirname "$0")/../.." && pwd)"
 fidus="${FIDUS:-$top/build-release/fidus}"
 level="${LEVEL:-5}"; lx="${LX:-0.5}"; lz="${LZ:-0.5}"
 steps="${STEPS:-2}"; np="${NP:-2}"
-variants="${VARIANTS:-r 1000|  set Penalty factor = 1000;r 300|  set Penalty factor = 300;r 100|  set Penalty factor = 100;r 30|  set Penalty factor = 30;r 1000, A solved inside|  set Penalty factor = 1000\n  subsection Linear solver\n    set Maximum cheap iterations = 0\n  end}"
+variants="${VARIANTS:-r 1000|  set Penalty factor = 1000\n  set Uzawa acceleration depth = 0;r 300|  set Penalty factor = 300\n  set Uzawa acceleration depth = 0;r 100|  set Penalty factor = 100\n  set Uzawa acceleration depth = 0;r 100, Anderson 3|  set Penalty factor = 100;r 30, Anderson 3|  set Penalty factor = 30;r 1000, A solved inside|  set Penalty factor = 1000\n  set Uzawa acceleration depth = 0\n  subsection Linear solver\n    set Maximum cheap iterations = 0\n  end}"
 if [ -n "${WORK:-}" ]; then mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
 else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
