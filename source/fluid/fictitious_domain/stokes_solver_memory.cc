@@ -29,6 +29,15 @@ namespace Fidus
     {
       return 2. * r + work_vectors;
     }
+
+    /// Vectors of the system the accelerated Uzawa loop keeps beside
+    /// FGMRES's (Fluid/Uzawa acceleration depth m): m + 1 multipliers and
+    /// m + 1 velocities, and one to import them into.
+    double
+    acceleration_vectors(const unsigned int depth)
+    {
+      return depth == 0 ? 0. : 2. * (depth + 1.) + 1.;
+    }
   } // namespace
 
 
@@ -50,7 +59,8 @@ namespace Fidus
     const double needed =
       double(n_owned) *
       (per_unknown +
-       8. * basis_vectors(std::min(settings.gmres_restart, smallest_restart)));
+       8. * (basis_vectors(std::min(settings.gmres_restart, smallest_restart)) +
+             acceleration_vectors(settings.uzawa_acceleration_depth)));
     const double free = memory_budget.free_bytes();
     const double short_by =
       Utilities::MPI::max(needed - free, mpi_communicator);
@@ -80,7 +90,8 @@ namespace Fidus
     const double vector_bytes = 8. * double(owned_partitioning[0].n_elements() +
                                             owned_partitioning[1].n_elements());
     const double short_by =
-      vector_bytes * basis_vectors(settings.gmres_restart) -
+      vector_bytes * (basis_vectors(settings.gmres_restart) +
+                      acceleration_vectors(settings.uzawa_acceleration_depth)) -
       memory_budget.free_bytes();
     return Utilities::MPI::max(short_by, mpi_communicator) > 0.;
   }
@@ -96,11 +107,13 @@ namespace Fidus
       8. * double(s.owned_partitioning[0].n_elements() +
                   s.owned_partitioning[1].n_elements());
     const double free = s.memory_budget.free_bytes();
-    // The largest restart whose basis fits in what is left (basis_vectors()
-    // solved for r).
+    // The largest restart whose basis fits in what is left beside the
+    // accelerated Uzawa loop's vectors (basis_vectors() solved for r).
     const double fits =
       std::isfinite(free) ?
-        std::floor((free / vector_bytes - work_vectors) / 2.) :
+        std::floor((free / vector_bytes - work_vectors -
+                    acceleration_vectors(s.settings.uzawa_acceleration_depth)) /
+                   2.) :
         double(s.settings.gmres_restart);
     restart = static_cast<unsigned int>(Utilities::MPI::min(
       std::max(0., std::min(fits, double(s.settings.gmres_restart))),
