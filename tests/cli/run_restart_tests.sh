@@ -177,7 +177,8 @@ fi
 # 1e-15 apart from the first step after the checkpoint, seen in CI and
 # reproduced with both cores busy); stops at a fixed step are bit-identical
 # on 2 ranks, loaded or not (below). So the signal path is checked to
-# round-off here, and bit-identity on 2 ranks with a deterministic stop.
+# round-off here, and bit-identity on 2 ranks with a deterministic stop
+# (where the machine allows it: below).
 largest=$(largest_change ref2 stop2 4 9)
 if no_duplicate_steps stop2 && [ "$(rows stop2/statistics.csv)" = 31 ] \
    && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-12) }'; then
@@ -190,10 +191,18 @@ scene later2 0.8 "  set Checkpoint interval = 4" > later2.prm
 "${mpirun_cmd[@]}" "$fidus" later2.prm > /dev/null 2>&1 || fail "run to t = 0.8 (2 ranks)"
 scene later2 3 "  set Checkpoint interval = 4" > later2_3.prm
 "${mpirun_cmd[@]}" "$fidus" --resume later2_3.prm > /dev/null 2>&1 || fail "resume to t = 3 (2 ranks)"
+# Bit-identical on an idle machine; under load a clean-clone CI run saw the
+# two uninterrupted starts differ already in step 0 (the rows before any
+# checkpoint), so what a 2-rank run repeats to the last bit is not a
+# property of restart. Then the round-off bound of the signal path above.
+largest=$(largest_change ref2 later2 4 9)
 if same_output ref2 later2 && no_duplicate_steps later2; then
   pass "2 ranks: run to t = 0.8, resumed to t = 3: bit-identical to one run to t = 3"
+elif no_duplicate_steps later2 && [ "$(rows later2/statistics.csv)" = 31 ] \
+     && awk -v m="$largest" 'BEGIN { exit !(m <= 1e-12) }'; then
+  pass "2 ranks: run to t = 0.8, resumed to t = 3: largest |dX|, |dU| over a = $largest <= 1e-12 against one run to t = 3 (not bit-identical: loaded machine)"
 else
-  fail "2 ranks: stopped at t = 0.8 and resumed: output differs from one run to t = 3"
+  fail "2 ranks: stopped at t = 0.8 and resumed: output differs from one run to t = 3 by $largest a"
   explain_difference ref2 later2
 fi
 
