@@ -249,7 +249,11 @@ namespace Fidus
       for (unsigned int i = 0; i < alpha.size(); ++i)
         {
           x.add(alpha[i], multipliers[i]);
-          // From the ghosted copy into the owned layout (an import).
+          // From the ghosted copy into the owned layout (an import). The
+          // vector is allocated here, not with the problem, so that the
+          // plain update holds no more memory than it did.
+          if (owned_velocity.size() == 0)
+            owned_velocity.reinit(update);
           owned_velocity = velocities[i].block(0);
           update.add(alpha[i], owned_velocity);
         }
@@ -268,7 +272,7 @@ namespace Fidus
     AndersonMixing                                 mixing;
     std::deque<TrilinosWrappers::MPI::Vector>      multipliers;
     std::deque<TrilinosWrappers::MPI::BlockVector> velocities;
-    TrilinosWrappers::MPI::Vector                  owned_velocity{update};
+    TrilinosWrappers::MPI::Vector                  owned_velocity;
   };
 
 
