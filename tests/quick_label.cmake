@@ -1,5 +1,5 @@
 # The quick subset (ctest -L quick, contrib/test.sh -L quick): the tests a
-# developer runs after every edit: 28 tests, 45 s on 2 cores with
+# developer runs after every edit: 29 tests, 45 s on 2 cores with
 # everything built (measured 2026-11-29 at 9d15913). They cover each module at its cheapest: the contact
 # library (KKT conditions, pair search, glue), the time loop through the
 # FluidModel interface with exact answers, the paper's 2D pair through the

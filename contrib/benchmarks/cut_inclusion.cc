@@ -18,7 +18,9 @@
 namespace
 {
   /// LINEAR_SOLVER = direct | iterative in the environment (default: the
-  /// solver's choice), ITERATIVE_TOLERANCE its tolerance.
+  /// solver's choice), ITERATIVE_TOLERANCE its tolerance,
+  /// VELOCITY_PRECONDITIONER = amg | multigrid, CUT_CELL_BLOCKS = 0 for
+  /// the multigrid's smoother without cut-cell blocks.
   template <int dim>
   void
   set_linear_solver(typename Fidus::CutStokesInclusion<dim>::Settings &s)
@@ -35,6 +37,8 @@ namespace
     if (const char *v = std::getenv("VELOCITY_PRECONDITIONER"))
       s.velocity_preconditioner =
         std::string(v) == "amg" ? Velocity::amg : Velocity::multigrid;
+    if (const char *v = std::getenv("CUT_CELL_BLOCKS"))
+      s.cut_cell_blocks = std::string(v) != "0";
   }
 
   template <int dim>

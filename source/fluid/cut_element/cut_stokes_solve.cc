@@ -761,14 +761,25 @@ namespace Fidus
     for (unsigned int i = 0; i < n_fluid; ++i)
       for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
         it->value() *= scale[i] * scale[it->column()];
-    std::unique_ptr<CutVelocityMultigrid<dim>> multigrid;
+    std::unique_ptr<CutVelocityMultigrid<dim>>   multigrid;
+    typename CutVelocityMultigrid<dim>::Settings multigrid_settings;
+    multigrid_settings.cut_cell_blocks = s.cut_cell_blocks;
+    if (!s.cut_cell_blocks)
+      multigrid_settings.smoothing_range = 15.;
     if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)
-      multigrid = std::make_unique<CutVelocityMultigrid<dim>>(
-        dof_handler,
-        constraints,
-        scale,
-        periodic_axes,
-        typename CutVelocityMultigrid<dim>::Settings());
+      multigrid =
+        std::make_unique<CutVelocityMultigrid<dim>>(dof_handler,
+                                                    constraints,
+                                                    scale,
+                                                    periodic_axes,
+                                                    multigrid_settings);
+    if (multigrid)
+      {
+        std::vector<std::pair<Point<dim>, double>> surfaces;
+        for (const auto &b : mesh->get_balls())
+          surfaces.emplace_back(b.center, b.radius);
+        multigrid->set_surfaces(surfaces);
+      }
     CutSaddlePointSolver<dim> solver(matrix,
                                      pressure_mass,
                                      layout,

@@ -269,15 +269,15 @@ namespace Fidus
         data.degree              = settings.smoother_degree;
         data.smoothing_range     = settings.smoothing_range;
         data.eig_cg_n_iterations = 12;
-        data.preconditioner =
-          std::make_shared<DiagonalMatrix<Vector<double>>>();
-        Vector<double> &inverse = data.preconditioner->get_vector();
-        inverse.reinit(a.m());
-        for (unsigned int i = 0; i < a.m(); ++i)
-          {
-            const double d = a.diag_element(i);
-            inverse[i]     = d > 0. ? 1. / d : 1.;
-          }
+        data.preconditioner      = std::make_shared<CutCellBlockJacobi>();
+        data.preconditioner->initialize(
+          a,
+          settings.cut_cell_blocks ?
+            cut_cell_blocks(l == 0 ? system : *dofs[l],
+                            l == 0 ? system_constraints : constraints[l],
+                            l == 0,
+                            local) :
+            std::vector<std::vector<unsigned int>>());
         smoother.push_back(std::make_unique<Smoother>());
         smoother.back()->initialize(a, data);
       }
@@ -334,6 +334,56 @@ namespace Fidus
                                    const Vector<double> &src) const
   {
     v_cycle(0, dst, src);
+  }
+
+
+
+  template <int dim>
+  template <typename Cell>
+  bool
+  CutVelocityMultigrid<dim>::near_surface(const Cell &cell) const
+  {
+    const Point<dim> centre        = cell->center();
+    const double     half_diagonal = 0.5 * cell->diameter();
+    for (const auto &surface : surfaces)
+      if (std::abs(centre.distance(surface.first) - surface.second) <
+          half_diagonal)
+        return true;
+    return false;
+  }
+
+
+
+  template <int dim>
+  std::vector<std::vector<unsigned int>>
+  CutVelocityMultigrid<dim>::cut_cell_blocks(
+    const DoFHandler<dim>           &level_dofs,
+    const AffineConstraints<double> &level_constraints,
+    const bool                       finest,
+    const std::vector<int>          &local) const
+  {
+    // On the finest level a row is a system velocity (local >= 0; the
+    // cells inside a particle have no DoFs, pressures no row); below it,
+    // every unconstrained DoF of the level is its own row. Constrained
+    // unknowns are left out: their rows hold the diagonal alone.
+    std::vector<std::vector<unsigned int>> blocks;
+    std::vector<types::global_dof_index>   indices;
+    for (const auto &cell : level_dofs.active_cell_iterators())
+      {
+        const unsigned int n = cell->get_fe().n_dofs_per_cell();
+        if (n == 0 || !near_surface(cell))
+          continue;
+        indices.resize(n);
+        cell->get_dof_indices(indices);
+        std::vector<unsigned int> block;
+        for (const auto i : indices)
+          if (!level_constraints.is_constrained(i) &&
+              (!finest || local[i] >= 0))
+            block.push_back(finest ? local[i] : i);
+        if (!block.empty())
+          blocks.push_back(std::move(block));
+      }
+    return blocks;
   }
 
 

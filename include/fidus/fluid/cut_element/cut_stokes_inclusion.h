@@ -171,6 +171,9 @@ namespace Fidus
       /// The velocity block's preconditioner in the iterative solver.
       VelocityPreconditioner velocity_preconditioner =
         VelocityPreconditioner::multigrid;
+      /// Cut-cell blocks in the multigrid's smoother (CutCellBlockJacobi);
+      /// false: point Jacobi, as before they were added (for comparisons).
+      bool cut_cell_blocks = true;
       /// Keep the mesh, the DoFs and the solution for output
       /// (Result::fields).
       bool keep_fields = false;
