@@ -4,7 +4,6 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/diagonal_matrix.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -43,10 +42,12 @@ namespace Fidus
    *   whatever the particles do inside a coarse cell. Coarse unknowns that
    *   reach no fluid (inside a particle, or constrained) have empty rows
    *   and get a unit diagonal.
-   * - **Smoothing** by Chebyshev polynomials on the point-Jacobi
-   *   preconditioned operator, before and after the coarse correction (so
-   *   one V-cycle is symmetric and serves CG); the coarsest level is
-   *   factorised.
+   * - **Smoothing** by Chebyshev polynomials on the operator
+   *   preconditioned by CutCellBlockJacobi: point Jacobi plus exact solves
+   *   on the unknowns of each cell that a particle surface crosses (the
+   *   Nitsche terms and ghost penalties couple those strongly), before and
+   *   after the coarse correction (so one V-cycle is symmetric and serves
+   *   CG); the coarsest level is factorised.
    */
   template <int dim>
   class CutVelocityMultigrid
