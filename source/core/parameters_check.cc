@@ -186,6 +186,10 @@ namespace Fidus
 
     if (fluid.model == FluidModelType::cut_finite_element)
       cut_element.check(*this);
+    else
+      cut_element.check_unused(
+        fluid.model == FluidModelType::fictitious_domain ? "fictitious domain" :
+                                                           "undisturbed shear");
 
     if (domain.boundary_condition == BoundaryCondition::exact_rigid_inclusion &&
         particles.positions.size() != 1)

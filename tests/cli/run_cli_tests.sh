@@ -50,6 +50,10 @@ expect_error "cut element in a box of uneven sides" "Domain/Upper right' give a 
   "$(base; cut_fluid ''; printf 'subsection Domain\n  set Upper right = 1.5, 1\nend\n')"
 expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value '0'; allowed: auto or a value > 0" \
   "$(base; cut_fluid '  set Cut minimum gap = 0')"
+expect_error "cut element Nitsche parameter 0" "Fluid/Cut Nitsche parameter' has the value 0; allowed: a value > 0" \
+  "$(base; cut_fluid '  set Cut Nitsche parameter = 0')"
+expect_error "cut entry with the fictitious domain" "Fluid/Cut velocity ghost penalty' is set with 'Fluid/Model = fictitious domain', which does not read it; allowed: its default, or 'Fluid/Model = cut finite element'" \
+  "$(base; printf 'subsection Fluid\n  set Cut velocity ghost penalty = 1e-2\nend\n')"
 expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \
   "$(base; cut_fluid '  set Lubrication correction = true
   set Lubrication range = 0.5')"

@@ -122,11 +122,14 @@ namespace Fidus
     s.global_level = prm.refinement.minimum_level;
     s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
     s.gap_cells   = prm.cut_element.gap_cells;
-    s.linear_solver = prm.cut_element.linear_solver == "direct" ?
-                        Cut::LinearSolver::direct :
-                      prm.cut_element.linear_solver == "iterative" ?
-                        Cut::LinearSolver::iterative :
-                        Cut::LinearSolver::automatic;
+    s.nitsche     = prm.cut_element.nitsche;
+    s.ghost_velocity = prm.cut_element.ghost_velocity;
+    s.ghost_pressure = prm.cut_element.ghost_pressure;
+    s.linear_solver  = prm.cut_element.linear_solver == "direct" ?
+                         Cut::LinearSolver::direct :
+                       prm.cut_element.linear_solver == "iterative" ?
+                         Cut::LinearSolver::iterative :
+                         Cut::LinearSolver::automatic;
     // A pair's cut cells away from its gap are as coarse as the Maximum
     // level, where 4 Gauss points per direction leave a quadrature error
     // of 1e-4 in the velocities at level 5 (a = 1.6 cells), seen as a

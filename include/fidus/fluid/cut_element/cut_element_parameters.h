@@ -19,7 +19,8 @@ namespace Fidus
    */
   struct CutElementParameters
   {
-    /// Register Fluid/Cut linear solver, Cut minimum gap, Cut gap cells.
+    /// Register Fluid/Cut linear solver, Cut minimum gap, Cut gap cells,
+    /// Cut Nitsche parameter, Cut velocity and pressure ghost penalty.
     static void
     declare(dealii::ParameterHandler &prm);
 
@@ -29,10 +30,15 @@ namespace Fidus
 
     /// Throw an InputError for what 'Fluid/Model = cut finite element'
     /// cannot do with the scene @p scene (its box, boundary condition,
-    /// lubrication correction, field output), or a minimum gap that is not
-    /// positive.
+    /// lubrication correction, field output), or a minimum gap or Nitsche
+    /// parameter that is not positive.
     void
     check(const Parameters &scene) const;
+
+    /// Throw an InputError naming the first Cut entry set away from its
+    /// default, for a scene whose fluid model @p model does not read them.
+    void
+    check_unused(const std::string &model) const;
 
     /// The minimum gap that 'auto' gives with Fluid/Lubrication correction
     /// (doc/theory/lubrication.md, "With the cut finite element").
@@ -41,6 +47,8 @@ namespace Fidus
     /// The fluid sees every gap at least this times the smaller radius
     /// (wall gaps: the radius).
     double minimum_gap = 1e-4;
+    /// The Cut entries set away from their defaults.
+    std::vector<std::string> entries_set;
     /// The Fluid/Lubrication ranges that are not auto (with the cut
     /// element the correction takes its ranges from minimum_gap).
     std::vector<std::string> ranges_set;
@@ -48,6 +56,10 @@ namespace Fidus
     double gap_cells = 2.;
     /// auto (or automatic), direct or iterative.
     std::string linear_solver = "automatic";
+    /// Nitsche's penalty, times eta / h.
+    double nitsche = 40.;
+    /// The ghost penalties of the velocity and the pressure.
+    double ghost_velocity = 1e-3, ghost_pressure = 1e-3;
   };
 } // namespace Fidus
 
