@@ -9,42 +9,16 @@ namespace Fidus
 {
   namespace
   {
-    /// Whether the symmetric @p a is positive definite (Cholesky, on a
-    /// copy).
-    bool
-    positive_definite(FullMatrix<double> a)
-    {
-      const unsigned int n = a.m();
-      for (unsigned int j = 0; j < n; ++j)
-        {
-          double d = a(j, j);
-          for (unsigned int k = 0; k < j; ++k)
-            d -= a(j, k) * a(j, k);
-          if (!(d > 0.))
-            return false;
-          a(j, j) = std::sqrt(d);
-          for (unsigned int i = j + 1; i < n; ++i)
-            {
-              double v = a(i, j);
-              for (unsigned int k = 0; k < j; ++k)
-                v -= a(i, k) * a(j, k);
-              a(i, j) = v / a(j, j);
-            }
-        }
-      return true;
-    }
-
     /// @p a becomes the inverse of its spectral absolute value,
     /// Q |Lambda|^-1 Q^T (eigenvalues below 1e-12 of the largest in
     /// magnitude are left out).
     void
-    absolute_inverse(FullMatrix<double> &a)
+    absolute_inverse(LAPACKFullMatrix<double> &a)
     {
       const unsigned int       n = a.m();
-      LAPACKFullMatrix<double> l(n, n);
-      l = a;
-      Vector<double>     eigenvalues;
-      FullMatrix<double> q;
+      LAPACKFullMatrix<double> l(a);
+      Vector<double>           eigenvalues;
+      FullMatrix<double>       q;
       l.compute_eigenvalues_symmetric(-std::numeric_limits<double>::max(),
                                       std::numeric_limits<double>::max(),
                                       0.,
@@ -53,7 +27,7 @@ namespace Fidus
       double largest = 0.;
       for (const double e : eigenvalues)
         largest = std::max(largest, std::abs(e));
-      a = 0.;
+      a.reinit(n, n);
       for (unsigned int k = 0; k < eigenvalues.size(); ++k)
         if (std::abs(eigenvalues[k]) > 1e-12 * largest)
           for (unsigned int i = 0; i < n; ++i)
@@ -84,8 +58,8 @@ namespace Fidus
     // value, Q |Lambda|^-1 Q^T, which keeps P^-1 positive definite and acts
     // as the inverse on the block's positive modes (leaving the block out
     // cost 8 of 43 FGMRES iterations there).
-    std::vector<int>   position(n, -1);
-    FullMatrix<double> block_matrix;
+    std::vector<int>         position(n, -1);
+    LAPACKFullMatrix<double> block_matrix, copy;
     for (const auto &block : blocks)
       {
         const unsigned int m = block.size();
@@ -98,11 +72,19 @@ namespace Fidus
               block_matrix(p, position[it->column()]) = it->value();
         for (unsigned int p = 0; p < m; ++p)
           position[block[p]] = -1;
-        if (positive_definite(block_matrix))
-          block_matrix.gauss_jordan();
-        else
+        // The inverse from the Cholesky factor (LAPACK's potrf and potri),
+        // which fails exactly where the block is not positive definite.
+        copy = block_matrix;
+        block_matrix.set_property(LAPACKSupport::symmetric);
+        try
+          {
+            block_matrix.compute_cholesky_factorization();
+            block_matrix.invert();
+          }
+        catch (const dealii::ExceptionBase &)
           {
             ++n_indefinite;
+            block_matrix = copy;
             absolute_inverse(block_matrix);
           }
         rows.insert(rows.end(), block.begin(), block.end());
@@ -170,16 +152,5 @@ namespace Fidus
         for (unsigned int p = 0; p < m; ++p)
           dst[r[p]] += y[p];
       }
-  }
-
-
-
-  std::size_t
-  CutCellBlockJacobi::memory_consumption() const
-  {
-    return inverse_diagonal.memory_consumption() +
-           (block_start.capacity() + rows.capacity()) * sizeof(unsigned int) +
-           inverse_start.capacity() * sizeof(std::size_t) +
-           inverses.capacity() * sizeof(float);
   }
 } // namespace Fidus

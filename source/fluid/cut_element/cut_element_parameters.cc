@@ -1,6 +1,5 @@
 // The cut finite element's entries of the subsection Fluid.
 
-#include <cctype>
 #include <cmath>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
@@ -9,35 +8,11 @@
 #include <fidus/core/parameters.h>
 #include <fidus/fluid/cut_element/cut_element_parameters.h>
 #include <sstream>
-#include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace Fidus
 {
-  namespace
-  {
-    /// The Cut entries and their defaults (declared with these, and
-    /// compared with them to find the entries a scene sets).
-    const std::vector<std::pair<std::string, std::string>> cut_defaults = {
-      {"Cut linear solver", "auto"},
-      {"Cut minimum gap", "auto"},
-      {"Cut gap cells", "2"},
-      {"Cut Nitsche parameter", "40"},
-      {"Cut velocity ghost penalty", "1e-3"},
-      {"Cut pressure ghost penalty", "1e-3"}};
-
-    const std::string &
-    default_of(const std::string &entry)
-    {
-      for (const auto &e : cut_defaults)
-        if (e.first == entry)
-          return e.second;
-      throw std::logic_error("no default for " + entry);
-    }
-  } // namespace
-
   using namespace dealii;
 
   void
@@ -46,7 +21,7 @@ namespace Fidus
     prm.enter_subsection("Fluid");
     prm.declare_entry(
       "Cut linear solver",
-      default_of("Cut linear solver"),
+      "auto",
       Patterns::Selection("auto|automatic|direct|iterative"),
       "With 'cut finite element': 'direct' factorises the system (MUMPS); "
       "'iterative' runs FGMRES with a block preconditioner (a geometric "
@@ -58,7 +33,7 @@ namespace Fidus
       "iterative solver').");
     prm.declare_entry(
       "Cut minimum gap",
-      default_of("Cut minimum gap"),
+      "auto",
       Patterns::Anything(),
       "With 'cut finite element': the fluid solve sees every gap between "
       "two particles at least this times the smaller radius, and every "
@@ -72,14 +47,14 @@ namespace Fidus
         " with 'Lubrication correction'.");
     prm.declare_entry(
       "Cut gap cells",
-      default_of("Cut gap cells"),
+      "2",
       Patterns::Double(0.),
       "With 'cut finite element': the cut cells near another particle are "
       "refined until this many cells span the gap (0: only until no cell "
       "is cut by two surfaces).");
     prm.declare_entry(
       "Cut Nitsche parameter",
-      default_of("Cut Nitsche parameter"),
+      "40",
       Patterns::Double(0.),
       "With 'cut finite element': the penalty of Nitsche's method that "
       "holds the fluid to each particle's rigid motion, times eta / h; > 0. "
@@ -89,7 +64,7 @@ namespace Fidus
       "gaps (doc/theory/cut_element.md).");
     prm.declare_entry(
       "Cut velocity ghost penalty",
-      default_of("Cut velocity ghost penalty"),
+      "1e-3",
       Patterns::Double(0.),
       "With 'cut finite element': the ghost penalty on the jumps of the "
       "velocity's normal derivatives across the faces of cut cells, which "
@@ -99,7 +74,7 @@ namespace Fidus
       "a/h = 1.6 (doc/theory/cut_element.md).");
     prm.declare_entry(
       "Cut pressure ghost penalty",
-      default_of("Cut pressure ghost penalty"),
+      "1e-3",
       Patterns::Double(0.),
       "With 'cut finite element': the ghost penalty on the jumps of the "
       "pressure's normal derivative across the faces of cut cells; >= 0.");
@@ -126,23 +101,25 @@ namespace Fidus
       ghost_velocity = prm.get_double("Cut velocity ghost penalty");
       ghost_pressure = prm.get_double("Cut pressure ghost penalty");
       linear_solver  = prm.get("Cut linear solver");
-      // Entries away from their defaults: with another fluid model they
+      // Entries away from their defaults (those of the struct, and
+      // 'auto' for the two that have it): with another fluid model they
       // would do nothing (check_unused()).
+      const CutElementParameters defaults;
       entries_set.clear();
-      for (const auto &[entry, fallback] : cut_defaults)
-        {
-          const std::string value = Utilities::trim(prm.get(entry));
-          // Numbers compare by value (1e-3 and 0.001 are the same);
-          // 'automatic' is the former name of 'auto'.
-          const bool numbers = !value.empty() && !fallback.empty() &&
-                               std::isdigit(fallback[0]) &&
-                               (std::isdigit(value[0]) || value[0] == '.');
-          const bool same =
-            value == fallback || (value == "automatic" && fallback == "auto") ||
-            (numbers && std::stod(value) == std::stod(fallback));
-          if (!same)
-            entries_set.push_back(entry);
-        }
+      const auto note = [this](const bool set, const char *entry) {
+        if (set)
+          entries_set.emplace_back(entry);
+      };
+      note(linear_solver != "auto" && linear_solver != "automatic",
+           "Cut linear solver");
+      note(Utilities::trim(prm.get("Cut minimum gap")) != "auto",
+           "Cut minimum gap");
+      note(gap_cells != defaults.gap_cells, "Cut gap cells");
+      note(nitsche != defaults.nitsche, "Cut Nitsche parameter");
+      note(ghost_velocity != defaults.ghost_velocity,
+           "Cut velocity ghost penalty");
+      note(ghost_pressure != defaults.ghost_pressure,
+           "Cut pressure ghost penalty");
       // The cut element gives the correction its ranges (the minimum gap),
       // so a range set by hand would do nothing.
       ranges_set.clear();

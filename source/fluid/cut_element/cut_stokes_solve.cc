@@ -767,14 +767,13 @@ namespace Fidus
     if (!s.cut_cell_blocks)
       multigrid_settings.smoothing_range = 15.;
     if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)
-      multigrid =
-        std::make_unique<CutVelocityMultigrid<dim>>(dof_handler,
-                                                    constraints,
-                                                    scale,
-                                                    periodic_axes,
-                                                    multigrid_settings);
-    if (multigrid)
       {
+        multigrid =
+          std::make_unique<CutVelocityMultigrid<dim>>(dof_handler,
+                                                      constraints,
+                                                      scale,
+                                                      periodic_axes,
+                                                      multigrid_settings);
         std::vector<std::pair<Point<dim>, double>> surfaces;
         for (const auto &b : mesh->get_balls())
           surfaces.emplace_back(b.center, b.radius);

@@ -67,10 +67,6 @@ namespace Fidus
       return n_indefinite;
     }
 
-    /// Bytes held by the blocks and their inverses.
-    std::size_t
-    memory_consumption() const;
-
   private:
     /// D_F^-1: 1/A_ii on the rows of no block, 0 on the others.
     Vector<double> inverse_diagonal;
