@@ -235,7 +235,8 @@ namespace
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::Utilities::MPI::MPI_InitFinalize
+    mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
   // cut_inclusion pair|held <a> "<levels>" "<gaps / a>" <band levels>
   if (argc > 1 &&
       (std::string(argv[1]) == "pair" || std::string(argv[1]) == "held"))

@@ -10,7 +10,11 @@
 #     the discs and their copies shifted by 1 along x moves every copy as
 #     the unit box moves the original (uniform meshes: see the checker);
 #  3. the walls' velocity in the fields of the scaled box is the shear's,
-#     +-g H/2.
+#     +-g H/2;
+#  4. threads: the model runs its one rank on the machine's cores; the
+#     iterative solver on 2 threads moves the discs as on 1 (the sums are
+#     taken in another order, so the runs agree to round-off, within 1e-9
+#     of the largest value of each column of particles.csv).
 # Usage: run_cut_box_test.sh path/to/fidus path/to/repo
 . "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 
@@ -63,6 +67,30 @@ for name in unit scaled uniform doubled; do
 done
 check "the invariances (check_cut_box.py)" \
   "$python" "$repo/tests/cli/check_cut_box.py" "$work"
+
+# 4. The uniform scene at level 6 with the iterative solver (about 40 000
+# unknowns, enough for deal.II to split its products among threads).
+for threads in 1 2; do
+  scene "threads-$threads" "0, 0" "1, 1" 0.05 "0.7, 0.75; 0.45, 0.5; 0.25, 0.3" 6 |
+    sed 's/set Cut minimum gap = 1e-3/&\n  set Cut linear solver = iterative/;
+         s/set Field output interval = 1/set Field output interval = 0/' \
+    > "threads-$threads.prm"
+  check "fidus runs on $threads thread(s)" \
+    env DEAL_II_NUM_THREADS=$threads "$fidus" "threads-$threads.prm"
+done
+check "2 threads agree with 1 to round-off" "$python" - "$work" <<'PY'
+import csv, sys
+rows = [list(csv.DictReader(open(sys.argv[1] + "/threads-%d/particles.csv" % t)))
+        for t in (1, 2)]
+assert len(rows[0]) == len(rows[1]) > 3, "the runs differ in length"
+worst = 0.
+for column in ("x", "y", "ux", "uy", "omega_z", "stresslet_xy"):
+    scale = max(abs(float(r[column])) for r in rows[0])
+    for a, b in zip(*rows):
+        worst = max(worst, abs(float(a[column]) - float(b[column])) / scale)
+print("largest difference between 1 and 2 threads: %.1e" % worst)
+sys.exit(0 if worst < 1e-9 else 1)
+PY
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]

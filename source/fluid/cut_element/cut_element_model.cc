@@ -1,5 +1,6 @@
 #include <cmath>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <fidus/contact/pair_search.h>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/cut_element/cut_element_model.h>
@@ -36,6 +37,13 @@ namespace Fidus
                        std::to_string(ranks) +
                        " MPI ranks; allowed: 1 rank (its direct solver is "
                        "serial)");
+    // On its one rank it takes the machine's cores as threads (at most
+    // DEAL_II_NUM_THREADS where that is set): deal.II splits the sparse
+    // products and vector operations of the iterative solver, most of a
+    // 3D solve's time, among them. fidus starts with one thread per rank,
+    // as the other models run one rank per core. Sums are then taken in
+    // another order: the answers agree with one thread's to round-off.
+    MultithreadInfo::set_thread_limit();
   }
 
 
