@@ -104,7 +104,9 @@ main(int argc, char **argv)
           if (root)
             std::cout << "fidus: " << input << " is valid ("
                       << parameters.dimension << "D, "
-                      << parameters.n_particles() << " particles)\n";
+                      << parameters.n_particles()
+                      << (parameters.n_particles() == 1 ? " particle)\n" :
+                                                          " particles)\n");
           return 0;
         }
       // A resumed run checks its checkpoint before it writes anything.
