@@ -235,8 +235,7 @@ namespace
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize
-    mpi(argc, argv, dealii::numbers::invalid_unsigned_int);
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   // cut_inclusion pair|held <a> "<levels>" "<gaps / a>" <band levels>
   if (argc > 1 &&
       (std::string(argv[1]) == "pair" || std::string(argv[1]) == "held"))

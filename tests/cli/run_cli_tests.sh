@@ -153,6 +153,13 @@ if [ $status -eq 0 ] && [ -n "$count" ] && [ "$count" -ge 320 ] && [ "$count" -l
 else
   failures=$((failures + 1)); echo "FAILED: generator at area fraction 0.6 (status $status)"; cat stdout.txt stderr.txt
 fi
+# One particle is named in the singular.
+base | sed 's/set Positions = .*/set Positions = 0.5, 0.5/' > one.prm
+if "$fidus" --validate one.prm | grep -q "(2D, 1 particle)$"; then
+  passes=$((passes + 1))
+else
+  failures=$((failures + 1)); echo "FAILED: --validate names one particle"
+fi
 rm -rf "$work/out"
 { generator_prm 3 | sed 's/End time = 0/End time = 0/'; printf 'subsection Fluid\n  set Model = undisturbed shear\nend\n'; } > gen_a.prm
 "$fidus" gen_a.prm > /dev/null 2>&1 && cp out/particles.csv gen_a.csv

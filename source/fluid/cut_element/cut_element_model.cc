@@ -1,6 +1,5 @@
 #include <cmath>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/multithread_info.h>
 #include <fidus/contact/pair_search.h>
 #include <fidus/core/input_error.h>
 #include <fidus/fluid/cut_element/cut_element_model.h>
@@ -37,18 +36,6 @@ namespace Fidus
                        std::to_string(ranks) +
                        " MPI ranks; allowed: 1 rank (its direct solver is "
                        "serial)");
-    // With the iterative solver (chosen, or automatic in 3D, which picks
-    // it above 40 000 unknowns) it takes the machine's cores as threads on
-    // its one rank (at most DEAL_II_NUM_THREADS where that is set): deal.II
-    // splits the sparse products and vector operations, most of an
-    // iterative solve's time, among them. fidus starts with one thread per
-    // rank, as the other models run one rank per core. The direct solver
-    // keeps one: its factorisation is serial, and the threads' tasks only
-    // slowed the assembly (5 % per dense 2D step). Threads sum in another
-    // order: the answers agree with one thread's to round-off.
-    if (prm.cut_element.linear_solver == "iterative" ||
-        (prm.cut_element.linear_solver != "direct" && dim == 3))
-      MultithreadInfo::set_thread_limit();
   }
 
 

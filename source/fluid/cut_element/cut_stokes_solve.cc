@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -272,6 +273,16 @@ namespace Fidus
     iterative = s.linear_solver == LinearSolver::iterative ||
                 (s.linear_solver == LinearSolver::automatic && dim == 3 &&
                  n_total > 40000);
+    // The iterative solver takes the machine's cores as threads (at most
+    // DEAL_II_NUM_THREADS where that is set): deal.II splits the sparse
+    // products and vector operations, most of its time, among them. fidus
+    // starts with one thread per rank, as the fictitious domain runs one
+    // rank per core; the cut element runs on one rank. The direct solver
+    // keeps one thread: MUMPS factorises on one core, and the threads'
+    // tasks only slowed the assembly (5 % per dense 2D step). Threads sum
+    // in another order: the answers agree with one thread's to round-off.
+    MultithreadInfo::set_thread_limit(
+      iterative ? numbers::invalid_unsigned_int : 1);
     for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
       if (taylor_hood.system_to_component_index(k).first == dim)
         pressure_shapes.push_back(k);
