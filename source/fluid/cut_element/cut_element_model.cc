@@ -7,6 +7,7 @@
 #include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/rheology/plane_strain.h>
 #include <fidus/simulation/run_summary.h>
+#include <iostream>
 #include <limits>
 
 namespace Fidus
@@ -164,6 +165,8 @@ namespace Fidus
         throw RunError(label.where +
                        ": the cut finite element failed: " + e.what());
       }
+    if (prm.output.verbosity == Verbosity::verbose)
+      print_stages(r);
     Statistics stats;
     stats.n_cells = last_cells = r.n_cells;
     stats.n_dofs = last_dofs = r.n_dofs;
@@ -228,6 +231,28 @@ namespace Fidus
     solved_shear_rate = g;
     last_fields       = r.fields;
     return stats;
+  }
+
+
+
+  template <int dim>
+  void
+  CutElementModel<dim>::print_stages(
+    const typename CutStokesInclusion<dim>::Result &r) const
+  {
+    // One rank (the constructor refuses more).
+    const auto &t = r.stage_seconds;
+    std::cout << "    cut element: " << r.n_dofs << " unknowns, " << r.n_cells
+              << " cells (" << r.n_cut_cells << " cut), "
+              << (r.n_iterations > 0 ?
+                    "FGMRES " + std::to_string(r.n_iterations) :
+                    std::string("direct"))
+              << "; s: mesh " << t.mesh << ", DoFs and pattern " << t.dofs
+              << ", assembly " << t.assembly << ", solve " << t.solve;
+    if (r.n_iterations > 0)
+      std::cout << " (of which FGMRES " << t.fgmres << ")";
+    std::cout << ", measure " << t.measure << ", all " << r.seconds
+              << std::endl;
   }
 
 

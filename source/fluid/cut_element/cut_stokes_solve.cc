@@ -796,12 +796,13 @@ namespace Fidus
                                      layout,
                                      multigrid.get());
     MemoryUsage::release_free_memory();
-    const auto statistics     = solver.solve(scaled_solution,
+    const auto statistics       = solver.solve(scaled_solution,
                                          scaled_rhs,
                                          s.iterative_tolerance,
                                          s.iterative_max_iterations);
-    result.n_iterations       = statistics.iterations;
-    result.n_setup_iterations = statistics.setup_iterations;
+    result.n_iterations         = statistics.iterations;
+    result.n_setup_iterations   = statistics.setup_iterations;
+    result.stage_seconds.fgmres = statistics.solve_seconds;
     apply_system(residual, scaled_solution);
     residual.sadd(-1., scaled_rhs);
   }

@@ -88,25 +88,39 @@ namespace Fidus
     Result
     run()
     {
+      auto &stage = result.stage_seconds;
+      // The wall time since the last call: each stage's share of the solve.
+      double     last = 0.;
+      const auto lap  = [&]() {
+        const double now = timer.wall_time(), spent = now - last;
+        last = now;
+        return spent;
+      };
       check_settings();
+      lap();
       make_mesh();
       classify_cells();
+      stage.mesh = lap();
       setup_dofs_and_constraints();
       find_ghost_penalty_faces();
       make_sparsity_pattern();
       // The pattern's scratch is freed in many small blocks.
       MemoryUsage::release_free_memory();
       setup_system();
+      stage.dofs = lap();
       assemble_cells();
       assemble_ghost_penalties();
       assemble_couplings();
+      stage.assembly = lap();
       solve_linear_system();
+      stage.solve = lap();
       read_rigid_motion();
       measure_solution();
       wall_stress();
       exact_inclusion_errors();
       if (s.keep_fields)
         keep_fields();
+      stage.measure  = lap();
       result.seconds = timer.wall_time();
       return result;
     }

@@ -96,6 +96,11 @@ namespace Fidus
     std::vector<typename CutStokesInclusion<dim>::RigidCoupling>
     subgrid_couplings(const std::vector<Vec3> &X) const;
 
+    /// With Output/Verbosity = verbose: the solve's size, its solver and
+    /// the seconds of its stages, one line.
+    void
+    print_stages(const typename CutStokesInclusion<dim>::Result &r) const;
+
     const Parameters       &prm;
     const BoxGeometry<dim> &box;
     dealii::TimerOutput    &timer;

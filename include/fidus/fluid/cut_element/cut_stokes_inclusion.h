@@ -228,6 +228,20 @@ namespace Fidus
       unsigned int n_iterations = 0, n_setup_iterations = 0;
       /// Wall seconds of the whole solve (setup, assembly, factorisation).
       double seconds = 0.;
+      /// Wall seconds of its stages: the mesh (built and its cells
+      /// placed), the DoFs (constraints, ghost-penalty faces, sparsity
+      /// pattern, matrices allocated), the assembly (cells, ghost
+      /// penalties, sub-grid couplings), the linear solve (scaling,
+      /// factorisation or preconditioner set-up, and FGMRES) and the
+      /// measurement (rigid motions, stresslets, walls, fields). They add
+      /// up to #seconds, less the settings' check. Of the solve, the
+      /// FGMRES iterations alone (0 with the direct solver); the rest of
+      /// it is the set-up (scaling, multigrid hierarchy or factorisation).
+      struct StageSeconds
+      {
+        double mesh = 0., dofs = 0., assembly = 0., solve = 0., measure = 0.;
+        double fgmres = 0.;
+      } stage_seconds;
       /// With Settings::keep_fields, the mesh, DoFs and solution (else
       /// null).
       std::shared_ptr<const CutFields<dim>> fields;
