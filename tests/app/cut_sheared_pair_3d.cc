@@ -15,7 +15,7 @@
 // one configuration of its passage, the line of centres at -60 deg, one
 // solve: the closing rate and the turning rate of the velocities the solve
 // returns (particles.csv, step 0) must be within 5 % of exact (over the
-// whole passage they are 0.989-1.016 of it; doc/validation.md). Without
+// whole passage they are 0.986-1.016 of it; doc/validation.md). Without
 // the correction the fluid, seeing the gap at 0.05 a, closes the pair 4.3
 // times too fast (measured once; not repeated here, as the check of the
 // closing rate cannot pass without the correction).
