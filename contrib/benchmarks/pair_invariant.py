@@ -23,13 +23,13 @@ Usage:  python3 pair_invariant.py OUTPUT_DIR [RADIUS [INTERVAL]]
         (defaults: radius 0.05; a row every INTERVAL = 0.5 time units, and
         every step whose gap is below 0.6 a). Standard library only.
 """
-import csv
 import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from batchelor_green import FirstIntegral, Mobility  # noqa: E402
+from pair_rates import pair_steps  # noqa: E402
 
 
 def main():
@@ -40,17 +40,11 @@ def main():
     a = float(sys.argv[2]) if len(sys.argv) > 2 else 0.05
     interval = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
     first_integral = FirstIntegral(Mobility(), N=4000)
-    by_step = {}
-    for r in csv.DictReader(open(os.path.join(out, "particles.csv"))):
-        by_step.setdefault(int(r["step"]), {})[int(r["id"])] = r
     print("| t | gap / a | angle ° | y_inf² | closest approach of that "
           "trajectory, gap / a |")
     print("|---|---|---|---|---|")
     next_time = 0.
-    for step in sorted(by_step):
-        p = by_step[step]
-        if 0 not in p or 1 not in p:
-            continue
+    for p in pair_steps(out).values():
         x = [[float(p[i][k]) for k in "xyz"] for i in (0, 1)]
         d = [x[1][k] - x[0][k] for k in range(3)]
         r = math.sqrt(sum(c * c for c in d)) / a

@@ -36,6 +36,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from batchelor_green import Mobility  # noqa: E402
 
 
+def pair_steps(out):
+    """The rows of particles.csv in @p out by step, {step: {id: row}}, for
+    the steps that hold both spheres (0 and 1), in order of the step."""
+    by_step = {}
+    for r in csv.DictReader(open(os.path.join(out, "particles.csv"))):
+        by_step.setdefault(int(r["step"]), {})[int(r["id"])] = r
+    return {s: by_step[s] for s in sorted(by_step)
+            if 0 in by_step[s] and 1 in by_step[s]}
+
+
 def main():
     if len(sys.argv) < 2:
         print(__doc__)
@@ -44,13 +54,10 @@ def main():
     a = float(sys.argv[2]) if len(sys.argv) > 2 else 0.05
     gap_min = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-3
     gap_max = float(sys.argv[4]) if len(sys.argv) > 4 else 0.5
-    rows = list(csv.DictReader(open(os.path.join(out, "particles.csv"))))
     stats = {int(r["step"]): r for r in
              csv.DictReader(open(os.path.join(out, "statistics.csv")))}
-    by_step = {}
-    for r in rows:
-        by_step.setdefault(int(r["step"]), {})[int(r["id"])] = r
-    steps = sorted(s for s in by_step if 0 in by_step[s] and 1 in by_step[s])
+    by_step = pair_steps(out)
+    steps = list(by_step)
     if len(steps) < 2:
         sys.exit("pair_rates.py: %s has fewer than two steps with both "
                  "particles (set 'Particle output interval = 1')" % out)
