@@ -270,6 +270,20 @@ if [ $status -ne 0 ] && [ ! -e "$work/out" ] && [ "$(grep -c '^fidus:' stderr.tx
    && grep -q "Fluid/Model' is 'cut finite element' on 2 MPI ranks; allowed: 1 rank" stderr.txt; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: cut element on 2 ranks (status $status)"; cat stderr.txt; fi
 
+# The cut element estimates each solve's memory from its unknowns before
+# building the system: under a budget smaller than what the process already
+# holds, the run stops at its first solve with one message naming the
+# unknowns, the estimate (7 KB per unknown with the 2D direct solver) and
+# the entries that would make it fit.
+{ base; printf 'subsection Fluid\n  set Model = cut finite element\n  subsection Linear solver\n    set Memory per rank = 0.001\n  end\nend\n'; } > cut_memory.prm
+rm -rf "$work/out"
+"$fidus" cut_memory.prm > /dev/null 2> stderr.txt
+status=$?
+unknowns=$(grep -o 'the cut mesh has [0-9]* unknowns' stderr.txt | grep -o '[0-9]*')
+if [ $status -ne 0 ] && [ "$(grep -c '^fidus:' stderr.txt)" -eq 1 ] && [ -n "$unknowns" ] \
+   && grep -q "its direct solve needs about .* (7 KB per unknown), but this rank has 0 B left ('Fluid/Linear solver/Memory per rank' = .*): raise 'Fluid/Cut minimum gap', lower 'Fluid/Cut gap cells' or 'Mesh refinement/Maximum level'" stderr.txt; then
+  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: cut element over its memory budget (status $status)"; cat stderr.txt; fi
+
 # A setting that another one switches off is said, not silent: the
 # lubrication correction with rigid shared cells (a close pair is one rigid
 # doublet, beyond the correction's range) runs with one warning naming both

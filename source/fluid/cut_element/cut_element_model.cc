@@ -120,6 +120,7 @@ namespace Fidus
     s.viscosity    = prm.fluid.viscosity;
     s.box_cells    = box_cells;
     s.keep_fields  = prm.output.field_output_interval > 0;
+    s.memory_limit = prm.fictitious_domain.memory_per_rank;
     s.global_level = prm.refinement.minimum_level;
     s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
     s.gap_cells   = prm.cut_element.gap_cells;

@@ -13,11 +13,14 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <fidus/core/memory_budget.h>
+#include <fidus/core/memory_usage.h>
 #include <fidus/fluid/cut_element/cut_level_set.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -210,6 +213,52 @@ namespace Fidus
   }
 
   template <int dim>
+  bool
+  CutStokesSolve<dim>::uses_iterative_solver() const
+  {
+    return s.linear_solver == LinearSolver::iterative ||
+           (s.linear_solver == LinearSolver::automatic && dim == 3 &&
+            n_total > 40000);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::check_memory() const
+  {
+    // The budget counts the ranks of the machine; without MPI (a caller
+    // that did not start it) there is no budget to keep.
+    int mpi_started = 0;
+    MPI_Initialized(&mpi_started);
+    if (!mpi_started)
+      return;
+    // Peak bytes per unknown of a whole solve (the system, its pattern,
+    // the scaled copies, the solver and its vectors), measured on one rank
+    // (doc/theory/cut_element.md, "Memory"): 19-23 KB with the iterative
+    // solver in 3D (38 000 to 533 000 unknowns); the direct solver's
+    // factor fills in: 8-9.5 KB in 2D, 56-68 KB in 3D (38 000 and 94 000
+    // unknowns). The lower ends, so that a solve is stopped only when it
+    // would clearly not fit.
+    const bool         iterate     = uses_iterative_solver();
+    const double       per_unknown = iterate ? 18e3 : dim == 2 ? 7e3 : 50e3;
+    const double       needed      = per_unknown * double(n_total);
+    const MemoryBudget budget(s.memory_limit, MPI_COMM_SELF);
+    const double       free = budget.free_bytes();
+    if (needed <= free)
+      return;
+    std::ostringstream m;
+    m << "the cut mesh has " << n_total << " unknowns; its "
+      << (iterate ? "iterative" : "direct") << " solve needs about "
+      << MemoryUsage::format(needed) << " (" << MemoryUsage::format(per_unknown)
+      << " per unknown), but this rank has " << MemoryUsage::format(free)
+      << " left (" << budget.source()
+      << "): raise 'Fluid/Cut minimum gap', lower 'Fluid/Cut gap cells' or "
+         "'Mesh refinement/Maximum level', or set 'Fluid/Linear "
+         "solver/Memory per rank' if the machine's figure is not what the "
+         "run may use";
+    throw std::runtime_error(m.str());
+  }
+
+  template <int dim>
   void
   CutStokesSolve<dim>::make_sparsity_pattern()
   {
@@ -270,9 +319,7 @@ namespace Fidus
       unconstrained.reinit(sparsity);
     // The iterative solver's pressure preconditioner takes the pressure
     // mass matrix over the fluid, on the pressures' own pattern.
-    iterative = s.linear_solver == LinearSolver::iterative ||
-                (s.linear_solver == LinearSolver::automatic && dim == 3 &&
-                 n_total > 40000);
+    iterative = uses_iterative_solver();
     // The iterative solver takes the machine's cores as threads (at most
     // DEAL_II_NUM_THREADS where that is set): deal.II splits the sparse
     // products and vector operations, most of its time, among them. fidus

@@ -102,6 +102,7 @@ namespace Fidus
       classify_cells();
       stage.mesh = lap();
       setup_dofs_and_constraints();
+      check_memory();
       find_ghost_penalty_faces();
       make_sparsity_pattern();
       // The pattern's scratch is freed in many small blocks.
@@ -190,6 +191,17 @@ namespace Fidus
     /// periodicity and pressure constraints.
     void
     setup_dofs_and_constraints();
+
+    /// Whether the system goes to the iterative solver (Settings::
+    /// linear_solver; automatic: 3D above 40 000 unknowns).
+    bool
+    uses_iterative_solver() const;
+
+    /// Throw, naming the unknowns, the estimate and what to change, if the
+    /// system, its solver and their work space would not fit in
+    /// Settings::memory_limit (or what the machine has available).
+    void
+    check_memory() const;
 
     /// Collect the faces that carry a ghost penalty, each once.
     void

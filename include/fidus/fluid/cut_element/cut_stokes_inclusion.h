@@ -174,6 +174,11 @@ namespace Fidus
       /// Cut-cell blocks in the multigrid's smoother (CutCellBlockJacobi);
       /// false: point Jacobi, as before they were added (for comparisons).
       bool cut_cell_blocks = true;
+      /// Bytes the solve may use in all, > 0; 0: what the machine has
+      /// available (MemoryBudget). A mesh whose system would not fit
+      /// (estimated from its unknowns) throws, naming what to change,
+      /// before its system is built.
+      double memory_limit = 0.;
       /// Keep the mesh, the DoFs and the solution for output
       /// (Result::fields).
       bool keep_fields = false;
