@@ -4,6 +4,7 @@
 #include <Epetra_MultiVector.h>
 #include <deal.II/base/point.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -42,15 +43,18 @@ namespace Fidus
    * FGMRES runs on it with the upper
    * block-triangular preconditioner [K B^T; 0 -S]^-1, where S is the
    * pressure mass matrix over the fluid (divided by the viscosity) plus C,
-   * applied with one AMG cycle. K^-1 is, by default, one V-cycle of the
-   * geometric multigrid CutVelocityMultigrid on K, which carries the rigid
-   * unknowns through all its levels. Without it (VelocityPreconditioner::
-   * amg of CutStokesInclusion), K is inverted through its Schur complement
-   * on the rigid unknowns: W = A_uu^-1 A_uV is solved for once (one CG
-   * solve per rigid unknown) and S_V = A_VV - A_Vu W is a small dense
-   * matrix, so the rigid unknowns, which couple to every cut cell of their
-   * particle, never enter the AMG; one ML AMG cycle on A_uu (with the rigid
-   * motions as near-null space) stands for A_uu^-1 in each application.
+   * inverted by CG with point Jacobi to a relative residual of 1e-2 (one
+   * AMG cycle on it, used before, left FGMRES 10-45 % more iterations in
+   * 3D: doc/theory/cut_element.md, "The pressure side"; FGMRES takes a
+   * preconditioner that changes from one application to the next). K^-1 is, by
+   * default, one V-cycle of the geometric multigrid CutVelocityMultigrid on K,
+   * which carries the rigid unknowns through all its levels. Without it
+   * (VelocityPreconditioner:: amg of CutStokesInclusion), K is inverted through
+   * its Schur complement on the rigid unknowns: W = A_uu^-1 A_uV is solved for
+   * once (one CG solve per rigid unknown) and S_V = A_VV - A_Vu W is a small
+   * dense matrix, so the rigid unknowns, which couple to every cut cell of
+   * their particle, never enter the AMG; one ML AMG cycle on A_uu (with the
+   * rigid motions as near-null space) stands for A_uu^-1 in each application.
    */
   template <int dim>
   class CutSaddlePointSolver
@@ -118,10 +122,17 @@ namespace Fidus
     void
     extract_blocks(const Layout &layout);
 
-    /// Assembles S = M / eta + C on the pressures, for its AMG.
+    /// Assembles S = M / eta + C on the pressures, with a unit diagonal
+    /// for the constrained ones (which apply_pressure_inverse() sets
+    /// apart).
     void
     build_pressure_schur(const SparseMatrix<double> &pressure_mass,
                          const Layout               &layout);
+
+    /// z = -S^-1 r on the pressures: CG with point Jacobi on S to 1e-2,
+    /// and the constrained pressures' rows exactly.
+    void
+    apply_pressure_inverse(Vector<double> &z, const Vector<double> &r) const;
 
     /// Sets up the AMG of A_uu with the rigid motions as near-null space
     /// (the preconditioner of the velocities without the multigrid).
@@ -142,8 +153,13 @@ namespace Fidus
     /// A_uu; S; B^T (rows: velocities, then rigid unknowns); A_Vu.
     SparseMatrix<double> velocity_matrix, pressure_schur, coupling,
       rigid_coupling;
-    TrilinosWrappers::SparseMatrix      velocity_trilinos, pressure_trilinos;
-    TrilinosWrappers::PreconditionAMG   velocity_amg, pressure_amg;
+    TrilinosWrappers::SparseMatrix           velocity_trilinos;
+    TrilinosWrappers::PreconditionAMG        velocity_amg;
+    PreconditionJacobi<SparseMatrix<double>> pressure_jacobi;
+    /// The constrained pressures (their numbers among the pressures) and
+    /// their diagonal in the system.
+    std::vector<unsigned int>           constrained_pressures;
+    std::vector<double>                 constrained_diagonal;
     CutVelocityMultigrid<dim>          *multigrid;
     std::unique_ptr<Epetra_MultiVector> null_space;
     /// W = A_uu^-1 A_uV, one column per rigid unknown, and S_V^-1.
