@@ -177,9 +177,11 @@ namespace Fidus
                       "1000",
                       Patterns::Integer(0, 100000),
                       "FGMRES iterations with the cheap preconditioner "
-                      "(one V-cycle per block) before switching to inner "
-                      "solves (CG with the V-cycle on the velocity block, "
-                      "CG on the pressure mass). 0: inner solves only, "
+                      "(one V-cycle on the velocity block, CG on the "
+                      "pressure mass to 1e-2) before switching to inner "
+                      "solves (CG with the V-cycle on the velocity block to "
+                      "1e-2, CG on the pressure mass to 1e-6). 0: inner "
+                      "solves only, "
                       "whose count grows much less with the penalty "
                       "factor; measured faster in 3D at a penalty factor "
                       "of 1e6 (doc/preconditioners.md).");
