@@ -205,6 +205,41 @@ namespace
                 200.);
   }
 
+  /// The compressional axis of the shear g (y - 1/2) e_x, (1, -1)/sqrt 2
+  /// in the x-y plane.
+  template <int dim>
+  dealii::Tensor<1, dim>
+  compressional_axis()
+  {
+    dealii::Tensor<1, dim> n;
+    n[0] = 1. / std::sqrt(2.);
+    n[1] = -1. / std::sqrt(2.);
+    return n;
+  }
+
+  /// Two particles of radius @p a on the compressional axis about the
+  /// box's centre, @p gap a apart, held in linear shear on the uniform mesh
+  /// of @p level with one cell across the gap.
+  template <int dim>
+  typename Fidus::CutStokesInclusion<dim>::Settings
+  held_pair(const double a, const double gap, const unsigned int level)
+  {
+    using Solver                   = Fidus::CutStokesInclusion<dim>;
+    const double                 d = 2. * a + gap * a;
+    const dealii::Tensor<1, dim> n = compressional_axis<dim>();
+    dealii::Point<dim>           middle;
+    for (unsigned int k = 0; k < dim; ++k)
+      middle[k] = 0.5;
+    typename Solver::Settings s;
+    s.particles    = {{middle - 0.5 * d * n, a, {}},
+                      {middle + 0.5 * d * n, a, {}}};
+    s.boundary     = Solver::Boundary::linear_shear;
+    s.global_level = level;
+    s.band_levels  = 0;
+    s.gap_cells    = 1.;
+    return s;
+  }
+
   /// Two discs held in shear at two gaps, level 6: the FGMRES bound, and
   /// what the cut-cell blocks of the smoother save.
   void
@@ -220,18 +255,9 @@ namespace
     using Solver = Fidus::CutStokesInclusion<2>;
     for (const double gap : {0.5, 0.02})
       {
-        const double         a = 0.1, d = 2. * a + gap * a;
-        dealii::Tensor<1, 2> n;
-        n[0] = 1. / std::sqrt(2.);
-        n[1] = -1. / std::sqrt(2.);
-        const dealii::Point<2> middle(0.5, 0.5);
-        Solver::Settings       s;
-        s.particles                    = {{middle - 0.5 * d * n, a, {}},
-                                          {middle + 0.5 * d * n, a, {}}};
-        s.boundary                     = Solver::Boundary::linear_shear;
-        s.global_level                 = 6;
-        s.band_levels                  = 0;
-        s.gap_cells                    = 1.;
+        const double               a   = 0.1;
+        const dealii::Tensor<1, 2> n   = compressional_axis<2>();
+        Solver::Settings           s   = held_pair<2>(a, gap, 6);
         const auto [direct, iterative] = both<2>(s);
         const auto closing             = [&](const auto &r) {
           return -n * (r.velocity[1] - r.velocity[0]);
@@ -279,21 +305,12 @@ namespace
     // the velocity block inverted exactly, and takes 36 with the pressure
     // mass inverted by CG (doc/theory/cut_element.md, "The pressure
     // side"). The bound 45 fails on the AMG cycle.
-    using Solver           = Fidus::CutStokesInclusion<3>;
-    const double         a = 0.15, d = 2. * a + 0.1 * a;
-    dealii::Tensor<1, 3> n;
-    n[0] = 1. / std::sqrt(2.);
-    n[1] = -1. / std::sqrt(2.);
-    const dealii::Point<3> middle(0.5, 0.5, 0.5);
-    Solver::Settings       s;
-    s.particles     = {{middle - 0.5 * d * n, a, {}},
-                       {middle + 0.5 * d * n, a, {}}};
-    s.boundary      = Solver::Boundary::linear_shear;
-    s.global_level  = 3;
-    s.band_levels   = 0;
-    s.gap_cells     = 1.;
-    s.linear_solver = Solver::LinearSolver::iterative;
-    const auto r    = Solver::solve(s);
+    using Solver                 = Fidus::CutStokesInclusion<3>;
+    const double               a = 0.15, d = 2. * a + 0.1 * a;
+    const dealii::Tensor<1, 3> n = compressional_axis<3>();
+    Solver::Settings           s = held_pair<3>(a, 0.1, 3);
+    s.linear_solver              = Solver::LinearSolver::iterative;
+    const auto r                 = Solver::solve(s);
     check_range("3D held pair, gap 0.1 a: residual", r.residual, 0., 1e-9);
     check_range("3D held pair, gap 0.1 a: FGMRES iterations",
                 r.n_iterations,

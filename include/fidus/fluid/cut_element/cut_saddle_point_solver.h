@@ -49,7 +49,7 @@ namespace Fidus
    * preconditioner that changes from one application to the next). K^-1 is, by
    * default, one V-cycle of the geometric multigrid CutVelocityMultigrid on K,
    * which carries the rigid unknowns through all its levels. Without it
-   * (VelocityPreconditioner:: amg of CutStokesInclusion), K is inverted through
+   * (VelocityPreconditioner::amg of CutStokesInclusion), K is inverted through
    * its Schur complement on the rigid unknowns: W = A_uu^-1 A_uV is solved for
    * once (one CG solve per rigid unknown) and S_V = A_VV - A_Vu W is a small
    * dense matrix, so the rigid unknowns, which couple to every cut cell of

@@ -69,7 +69,7 @@ namespace Fidus
           // CG with Jacobi to 1e-2, a few matrix products on the pressures:
           // one Jacobi sweep alone, used before, left FGMRES 17-29 % more
           // iterations on the bulk 3D scene (doc/theory/fictitious_domain.md,
-          // "Linear solver"). FGMRES takes the varying operator.
+          // "Linear solvers"). FGMRES takes the varying operator.
           SolverControl                           control(100,
                                 1e-2 * src.block(1).l2_norm(),
                                 false,
