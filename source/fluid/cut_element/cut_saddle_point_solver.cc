@@ -1,4 +1,6 @@
 #include <Teuchos_ParameterList.hpp>
+#include <algorithm>
+#include <deal.II/base/parallel.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
@@ -112,18 +114,26 @@ namespace Fidus
       views.clear();
       views.shrink_to_fit();
       block.reinit(pattern);
-      std::vector<double> row_values(n_columns, 0.);
-      for (unsigned int k = 0; k < rows.size(); ++k)
-        {
-          for (auto it = matrix.begin(rows[k]); it != matrix.end(rows[k]); ++it)
-            if (column(it->column()) >= 0)
-              row_values[column(it->column())] = it->value();
-          for (auto it = block.begin(k); it != block.end(k); ++it)
+      // The values, on the machine's threads (each row is its own).
+      parallel::apply_to_subranges(
+        0u,
+        static_cast<unsigned int>(rows.size()),
+        [&](const unsigned int first, const unsigned int last) {
+          std::vector<double> row_values(n_columns, 0.);
+          for (unsigned int k = first; k < last; ++k)
             {
-              it->value()              = row_values[it->column()];
-              row_values[it->column()] = 0.;
+              for (auto it = matrix.begin(rows[k]); it != matrix.end(rows[k]);
+                   ++it)
+                if (column(it->column()) >= 0)
+                  row_values[column(it->column())] = it->value();
+              for (auto it = block.begin(k); it != block.end(k); ++it)
+                {
+                  it->value()              = row_values[it->column()];
+                  row_values[it->column()] = 0.;
+                }
             }
-        }
+        },
+        std::max<unsigned int>(1000, rows.size() / 8));
     };
     const auto of_kind = [&](const unsigned char kind) {
       return [&, kind](const unsigned int j) {

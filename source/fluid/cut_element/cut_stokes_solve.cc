@@ -8,7 +8,6 @@
 #include <cmath>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
@@ -17,6 +16,7 @@
 #include <fidus/core/memory_usage.h>
 #include <fidus/fluid/cut_element/cut_level_set.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
+#include <fidus/fluid/cut_element/element_sparsity.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <limits>
 #include <map>
@@ -131,6 +131,15 @@ namespace Fidus
   void
   CutStokesSolve<dim>::setup_dofs_and_constraints()
   {
+    // The solve takes the machine's cores as threads (at most
+    // DEAL_II_NUM_THREADS where that is set): the assembly, the patterns
+    // and the multigrid's products split among them, and deal.II's sparse
+    // products and vector operations, most of an iterative solve. fidus
+    // starts with one thread per rank, as the fictitious domain runs one
+    // rank per core; the cut element runs on one rank. MUMPS factorises on
+    // one core. Threads sum the products in another order: the answers
+    // agree with one thread's to round-off.
+    MultithreadInfo::set_thread_limit(numbers::invalid_unsigned_int);
     dof_handler.distribute_dofs(fe_collection);
     n_fluid        = dof_handler.n_dofs();
     n_total        = n_fluid + n_rigid * particles.size();
@@ -267,7 +276,10 @@ namespace Fidus
     // of its particle, in one pattern of all unknowns (what
     // DoFTools::make_sparsity_pattern does for the fluid alone; a second
     // pattern copied into this one doubled the set-up's time and memory).
-    DynamicSparsityPattern               dsp(n_total, n_total);
+    // Through the constraints: a hanging DoF of a cell passes its couplings
+    // on to the DoFs it hangs from, and a matrix entry missing from the
+    // pattern would be dropped without an error.
+    ElementSparsity                      elements(n_total, constraints);
     std::vector<types::global_dof_index> coupled;
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -279,10 +291,7 @@ namespace Fidus
         if (here.n_cut > 0)
           for (unsigned int k = 0; k < n_rigid; ++k)
             coupled.push_back(n_fluid + balls[here.ball].owner * n_rigid + k);
-        // Through the constraints: a hanging DoF of the cell passes its
-        // couplings on to the DoFs it hangs from, and a matrix entry missing
-        // from the pattern would be dropped without an error.
-        constraints.add_entries_local_to_global(coupled, dsp, true);
+        elements.add_element(coupled);
       }
     for (const GhostFace &face : ghost_faces)
       {
@@ -292,19 +301,22 @@ namespace Fidus
         for (const auto j : neighbour_dofs)
           if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
             coupled.push_back(j);
-        constraints.add_entries_local_to_global(coupled, dsp, true);
+        elements.add_element(coupled);
       }
+    // Each particle's rigid unknowns together, and those of the particles
+    // a rigid coupling joins.
+    const auto add_rigid = [&](const std::vector<unsigned int> &owners) {
+      coupled.clear();
+      for (const unsigned int p : owners)
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          coupled.push_back(n_fluid + p * n_rigid + k);
+      elements.add_element(coupled);
+    };
     for (unsigned int p = 0; p < particles.size(); ++p)
-      for (unsigned int k = 0; k < n_rigid; ++k)
-        for (unsigned int l = 0; l < n_rigid; ++l)
-          dsp.add(n_fluid + p * n_rigid + k, n_fluid + p * n_rigid + l);
+      add_rigid({p});
     for (const auto &c : s.couplings)
-      for (const unsigned int p : c.owners)
-        for (const unsigned int q : c.owners)
-          for (unsigned int k = 0; k < n_rigid; ++k)
-            for (unsigned int l = 0; l < n_rigid; ++l)
-              dsp.add(n_fluid + p * n_rigid + k, n_fluid + q * n_rigid + l);
-    sparsity.copy_from(dsp);
+      add_rigid(c.owners);
+    elements.build(sparsity);
   }
 
   template <int dim>
@@ -320,377 +332,36 @@ namespace Fidus
     // The iterative solver's pressure preconditioner takes the pressure
     // mass matrix over the fluid, on the pressures' own pattern.
     iterative = uses_iterative_solver();
-    // The iterative solver takes the machine's cores as threads (at most
-    // DEAL_II_NUM_THREADS where that is set): deal.II splits the sparse
-    // products and vector operations, most of its time, among them. fidus
-    // starts with one thread per rank, as the fictitious domain runs one
-    // rank per core; the cut element runs on one rank. The direct solver
-    // keeps one thread: MUMPS factorises on one core, and the threads'
-    // tasks only slowed the assembly (5 % per dense 2D step). Threads sum
-    // in another order: the answers agree with one thread's to round-off.
-    MultithreadInfo::set_thread_limit(
-      iterative ? numbers::invalid_unsigned_int : 1);
     for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
       if (taylor_hood.system_to_component_index(k).first == dim)
         pressure_shapes.push_back(k);
-    local_pressure.reinit(pressure_shapes.size(), pressure_shapes.size());
     local_pressure_mean.reinit(pressure_shapes.size());
     pressure_dof_indices.resize(pressure_shapes.size());
     pressure_mean.reinit(n_total);
     if (iterative)
       {
-        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
-        coupling[dim][dim] = DoFTools::always;
-        DynamicSparsityPattern mass_dsp(n_fluid, n_fluid);
-        DoFTools::make_sparsity_pattern(dof_handler,
-                                        coupling,
-                                        mass_dsp,
-                                        constraints,
-                                        true);
-        mass_sparsity.copy_from(mass_dsp);
+        // The pressures of each fluid cell, coupled all with all.
+        ElementSparsity elements(n_fluid, constraints);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->active_fe_index() == 0)
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+                pressure_dof_indices[a] = dofs[pressure_shapes[a]];
+              elements.add_element(pressure_dof_indices);
+            }
+        elements.build(mass_sparsity);
         pressure_mass.reinit(mass_sparsity);
       }
     rhs.reinit(n_total);
     solution.reinit(n_total);
 
     n_ext = n_local + n_rigid;
-    local.reinit(n_ext, n_ext);
     local_rhs.reinit(n_ext);
-    ext_dofs.resize(n_ext);
     // The external forces load the translations of the rigid unknowns.
     for (unsigned int p = 0; p < particles.size(); ++p)
       for (unsigned int d = 0; d < dim; ++d)
         rhs(n_fluid + p * n_rigid + d) = particles[p].force[d];
-
-    eps.resize(n_local);
-    div.resize(n_local);
-    q_shape.resize(n_local);
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::add_volume(const FEValues<dim> &fe_values)
-  {
-    // The fluid terms of one cell on the quadrature @p fe_values, with the
-    // shape functions' strain, divergence and pressure evaluated once per
-    // point rather than once per pair of them.
-    for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
-      {
-        const double JxW = fe_values.JxW(q);
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            eps[i]     = fe_values[velocity].symmetric_gradient(i, q);
-            div[i]     = fe_values[velocity].divergence(i, q);
-            q_shape[i] = fe_values[pressure].value(i, q);
-          }
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            const SymmetricTensor<2, dim> e = 2. * eta * JxW * eps[i];
-            const double d = JxW * div[i], p = JxW * q_shape[i];
-            for (unsigned int j = 0; j < n_local; ++j)
-              local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
-          }
-        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
-            local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
-                                    q_shape[pressure_shapes[b]] / eta;
-      }
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::add_nitsche(const cell_iterator &cell,
-                                   const Ball          &P,
-                                   const double         h)
-  {
-    const auto &q_surface = generator->get_surface_quadrature();
-    NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
-                                                         taylor_hood,
-                                                         q_surface,
-                                                         surface_flags);
-    fe_surface.reinit(cell);
-    const double gamma = s.nitsche * eta / h;
-    // Per extended index I: the trace of v - w_v, the traction's
-    // viscous part 2 eta eps(v) n and the pressure shape value.
-    std::vector<Tensor<1, dim>> jump(n_ext), traction(n_ext);
-    std::vector<double>         p_shape(n_ext);
-    for (unsigned int q = 0; q < q_surface.size(); ++q)
-      {
-        // The fluid's outward normal points into the particle.
-        const Tensor<1, dim> n = -fe_surface.normal_vector(q);
-        const Tensor<1, dim> r = fe_surface.quadrature_point(q) - P.center;
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            jump[i] = fe_surface[velocity].value(i, q);
-            traction[i] =
-              2. * eta * (fe_surface[velocity].symmetric_gradient(i, q) * n);
-            p_shape[i] = fe_surface[pressure].value(i, q);
-          }
-        for (unsigned int k = 0; k < n_rigid; ++k)
-          {
-            jump[n_local + k]     = -rigid_mode<dim>(k, r);
-            traction[n_local + k] = Tensor<1, dim>();
-            p_shape[n_local + k]  = 0.;
-          }
-        const double JxW = fe_surface.JxW(q);
-        for (unsigned int i = 0; i < n_ext; ++i)
-          for (unsigned int j = 0; j < n_ext; ++j)
-            local(i, j) +=
-              (-traction[j] * jump[i] + p_shape[j] * (jump[i] * n) -
-               traction[i] * jump[j] + p_shape[i] * (jump[j] * n) +
-               gamma * jump[i] * jump[j]) *
-              JxW;
-      }
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::distribute_cell()
-  {
-    for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-      {
-        pressure_dof_indices[a] = ext_dofs[pressure_shapes[a]];
-        local_pressure_mean[a]  = 0.;
-        for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
-          local_pressure_mean[a] += local_pressure(a, b);
-      }
-    constraints.distribute_local_to_global(local_pressure_mean,
-                                           pressure_dof_indices,
-                                           pressure_mean);
-    if (iterative)
-      constraints.distribute_local_to_global(local_pressure,
-                                             pressure_dof_indices,
-                                             pressure_mass);
-    if (periodic)
-      unconstrained.add(ext_dofs, local);
-    constraints.distribute_local_to_global(local,
-                                           local_rhs,
-                                           ext_dofs,
-                                           matrix,
-                                           rhs);
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::assemble_cells()
-  {
-    const auto &balls = mesh->get_balls();
-    // A cell without a surface is a full square of its level's size, and
-    // its matrix depends on that size only: computed once per level.
-    std::map<int, FullMatrix<double>> fluid_cell_matrix, fluid_cell_mass;
-
-    q1d = std::make_unique<const hp::QCollection<1>>(
-      QGauss<1>(s.quadrature_points));
-    generator = std::make_unique<NonMatching::QuadratureGenerator<dim>>(*q1d);
-    FEValues<dim> fe_fluid(mapping,
-                           taylor_hood,
-                           q_cell,
-                           update_gradients | update_values |
-                             update_JxW_values);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (cell->active_fe_index() != 0)
-          continue;
-        local          = 0.;
-        local_pressure = 0.;
-        local_rhs      = 0.;
-        cell->get_dof_indices(dofs);
-        std::copy(dofs.begin(), dofs.end(), ext_dofs.begin());
-        const Placement &here = placed(cell);
-        const auto      &P    = balls[here.ball];
-        for (unsigned int k = 0; k < n_rigid; ++k)
-          ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
-        if (here.n_cut == 0)
-          {
-            auto cached = fluid_cell_matrix.find(cell->level());
-            if (cached == fluid_cell_matrix.end())
-              {
-                fe_fluid.reinit(cell);
-                add_volume(fe_fluid);
-                cached = fluid_cell_matrix.emplace(cell->level(), local).first;
-                fluid_cell_mass.emplace(cell->level(), local_pressure);
-              }
-            else
-              {
-                local          = cached->second;
-                local_pressure = fluid_cell_mass[cell->level()];
-              }
-            distribute_cell();
-            continue;
-          }
-        const double h = cell->extent_in_direction(0);
-        generator->generate(
-          CutLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
-          unit_box);
-        const Quadrature<dim> &q_outside = generator->get_outside_quadrature();
-        if (q_outside.size() > 0)
-          {
-            FEValues<dim> fe_cut(mapping,
-                                 taylor_hood,
-                                 q_outside,
-                                 update_gradients | update_values |
-                                   update_JxW_values);
-            fe_cut.reinit(cell);
-            add_volume(fe_cut);
-          }
-        if (generator->get_surface_quadrature().size() > 0)
-          add_nitsche(cell, P, h);
-        distribute_cell();
-      }
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::assemble_couplings()
-  {
-    // The rigid rows read A x = F: the fluid's traction and the external
-    // force. A resistance whose load on the particles is -M x + l joins
-    // them as (A + M) x = F + l.
-    for (const auto &c : s.couplings)
-      {
-        const unsigned int m = c.owners.size() * n_rigid;
-        AssertThrow(c.matrix.size() == m && c.load.size() == m,
-                    ExcMessage("a rigid coupling of the wrong size"));
-        const auto row = [&](const unsigned int k) {
-          return n_fluid + c.owners[k / n_rigid] * n_rigid + k % n_rigid;
-        };
-        for (unsigned int k = 0; k < m; ++k)
-          {
-            AssertThrow(c.owners[k / n_rigid] < particles.size(),
-                        ExcMessage("a rigid coupling of a particle that "
-                                   "is not there"));
-            rhs(row(k)) += c.load[k];
-            for (unsigned int l = 0; l < m; ++l)
-              matrix.add(row(k), row(l), c.matrix[k][l]);
-          }
-      }
-  }
-
-  template <int dim>
-  void
-  CutStokesSolve<dim>::assemble_ghost_penalties()
-  {
-    // Ghost penalties on the faces of cut cells. The two cells share the
-    // DoFs of their common face, so the face's unknowns are the union of
-    // both cells' (as FEInterfaceValues numbers them): a shared DoF's jump
-    // takes the contributions of both sides.
-    const QGauss<dim - 1> q_face(3);
-    const UpdateFlags     face_flags = update_gradients | update_hessians |
-                                   update_JxW_values | update_normal_vectors |
-                                   update_quadrature_points;
-    FEFaceValues<dim>    fe_face(mapping, taylor_hood, q_face, face_flags);
-    FEFaceValues<dim>    fe_neighbour(mapping, taylor_hood, q_face, face_flags);
-    FESubfaceValues<dim> fe_coarser(mapping, taylor_hood, q_face, face_flags);
-    std::vector<types::global_dof_index>     face_dofs;
-    std::vector<std::array<unsigned int, 2>> local_of(n_local);
-    FullMatrix<double>                       face_matrix, jumps, signed_jumps;
-    Vector<double>                           face_rhs;
-    std::vector<Tensor<1, dim>>              d1, d2;
-    std::vector<double>                      dp;
-    // Per quadrature point: the dim first and dim second normal-derivative
-    // jumps of the velocity and the pressure's jump.
-    constexpr unsigned int n_jumps = 2 * dim + 1;
-    for (const GhostFace &ghost : ghost_faces)
-      {
-        const auto &cell      = ghost.cell;
-        const auto &neighbour = ghost.neighbour;
-        const bool  coarser   = ghost.subface != numbers::invalid_unsigned_int;
-        fe_face.reinit(cell, ghost.face);
-        if (coarser)
-          fe_coarser.reinit(neighbour, ghost.neighbour_face, ghost.subface);
-        else
-          fe_neighbour.reinit(neighbour, ghost.neighbour_face);
-        const FEFaceValuesBase<dim> &fe_other =
-          coarser ? static_cast<const FEFaceValuesBase<dim> &>(fe_coarser) :
-                    static_cast<const FEFaceValuesBase<dim> &>(fe_neighbour);
-        cell->get_dof_indices(dofs);
-        neighbour->get_dof_indices(neighbour_dofs);
-        face_dofs = dofs;
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            local_of[i][0] = i;
-            const auto it =
-              std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
-            if (it != dofs.end())
-              local_of[i][1] = it - dofs.begin();
-            else
-              {
-                local_of[i][1] = face_dofs.size();
-                face_dofs.push_back(neighbour_dofs[i]);
-              }
-          }
-        const unsigned int n_face = face_dofs.size();
-        face_matrix.reinit(n_face, n_face);
-        // The face matrix is sum_q JxW (w_v h d1 d1^T + w_v h^3 d2 d2^T -
-        // w_p h^3 dp dp^T): the jumps, weighted by the square roots, are
-        // the columns of J, and the face matrix is J S J^T with S the
-        // signs (one matrix product instead of a double loop per point).
-        jumps.reinit(n_face, q_face.size() * n_jumps);
-        signed_jumps.reinit(n_face, q_face.size() * n_jumps);
-        // Across a hanging face, the mean of the two cells' sizes.
-        const double h = 0.5 * (cell->extent_in_direction(0) +
-                                neighbour->extent_in_direction(0));
-        for (unsigned int q = 0; q < q_face.size(); ++q)
-          {
-            if ((fe_face.quadrature_point(q) - fe_other.quadrature_point(q) -
-                 ghost.shift)
-                  .norm() > 1e-12 * h)
-              throw std::logic_error("CutStokesInclusion: face quadrature "
-                                     "points do not match");
-            const Tensor<1, dim> n = fe_face.normal_vector(q);
-            d1.assign(n_face, Tensor<1, dim>());
-            d2.assign(n_face, Tensor<1, dim>());
-            dp.assign(n_face, 0.);
-            for (unsigned int side = 0; side < 2; ++side)
-              {
-                const FEFaceValuesBase<dim> &fv =
-                  side == 0 ? fe_face : fe_other;
-                const double sign = side == 0 ? 1. : -1.;
-                for (unsigned int i = 0; i < n_local; ++i)
-                  {
-                    const unsigned int I    = local_of[i][side];
-                    const auto         grad = fv[velocity].gradient(i, q);
-                    const auto         hess = fv[velocity].hessian(i, q);
-                    for (unsigned int c = 0; c < dim; ++c)
-                      {
-                        d1[I][c] += sign * (grad[c] * n);
-                        d2[I][c] += sign * (n * (hess[c] * n));
-                      }
-                    dp[I] += sign * (fv[pressure].gradient(i, q) * n);
-                  }
-              }
-            const double JxW = fe_face.JxW(q);
-            const double w1  = std::sqrt(s.ghost_velocity * eta * h * JxW),
-                         w2 =
-                           std::sqrt(s.ghost_velocity * eta * h * h * h * JxW),
-                         wp =
-                           std::sqrt(s.ghost_pressure / eta * h * h * h * JxW);
-            const unsigned int first = q * n_jumps;
-            for (unsigned int i = 0; i < n_face; ++i)
-              {
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    jumps(i, first + c) = signed_jumps(i, first + c) =
-                      w1 * d1[i][c];
-                    jumps(i, first + dim + c) =
-                      signed_jumps(i, first + dim + c) = w2 * d2[i][c];
-                  }
-                jumps(i, first + 2 * dim)        = wp * dp[i];
-                signed_jumps(i, first + 2 * dim) = -wp * dp[i];
-              }
-          }
-        jumps.mTmult(face_matrix, signed_jumps);
-        if (periodic)
-          unconstrained.add(face_dofs, face_matrix);
-        // With the right-hand side: a face next to the box's boundary
-        // couples to DoFs with imposed velocity, whose values move to it.
-        face_rhs.reinit(n_face);
-        constraints.distribute_local_to_global(face_matrix,
-                                               face_rhs,
-                                               face_dofs,
-                                               matrix,
-                                               rhs);
-      }
   }
 
   template <int dim>

@@ -2,6 +2,7 @@
 #define fidus_fluid_cut_element_cut_stokes_solve_h
 
 #include <algorithm>
+#include <array>
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -26,7 +27,9 @@
 #include <fidus/fluid/cut_element/cut_mesh.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
+#include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace Fidus
@@ -187,8 +190,9 @@ namespace Fidus
     void
     classify_cells();
 
-    /// Distribute the DoFs and set up the hanging-node, boundary,
-    /// periodicity and pressure constraints.
+    /// Take the machine's cores as threads, distribute the DoFs and set
+    /// up the hanging-node, boundary, periodicity and pressure
+    /// constraints.
     void
     setup_dofs_and_constraints();
 
@@ -296,21 +300,105 @@ namespace Fidus
              (placed(cell).n_cut > 0 || placed(neighbour).n_cut > 0);
     }
 
-    /// Add the fluid terms of one cell on the quadrature @p fe_values to
-    /// the cell matrix (and the pressure mass matrix for the iterative
-    /// solver).
+    /// What one thread needs to assemble cells: a full cell's FEValues,
+    /// its own generator of cut-cell quadratures, and per shape function
+    /// the values at one quadrature point. A copy is built afresh.
+    struct CellScratch
+    {
+      explicit CellScratch(const CutStokesSolve &solve);
+      CellScratch(const CellScratch &other)
+        : CellScratch(other.solve)
+      {}
+      const CutStokesSolve                 &solve;
+      const hp::QCollection<1>              q1d;
+      NonMatching::QuadratureGenerator<dim> generator;
+      FEValues<dim>                         fe_fluid;
+      std::vector<types::global_dof_index>  dofs;
+      /// Strain, divergence and pressure of each shape function.
+      std::vector<SymmetricTensor<2, dim>> eps;
+      std::vector<double>                  div, q_shape;
+      /// Per extended index, on the surface: the trace of v - w_v, the
+      /// viscous traction and the pressure.
+      std::vector<Tensor<1, dim>> jump, traction;
+      std::vector<double>         p_shape;
+    };
+
+    /// One cell's matrices on its shape functions and its particle's rigid
+    /// unknowns (extended indices), for distribute_cell().
+    struct CellCopy
+    {
+      explicit CellCopy(const CutStokesSolve &solve);
+      /// Whether the cell has fluid (and so anything to add).
+      bool                                 fluid = false;
+      FullMatrix<double>                   local, local_pressure;
+      std::vector<types::global_dof_index> ext_dofs;
+    };
+
+    /// What one thread needs to assemble ghost-penalty faces.
+    struct FaceScratch
+    {
+      explicit FaceScratch(const CutStokesSolve &solve);
+      FaceScratch(const FaceScratch &other)
+        : FaceScratch(other.solve)
+      {}
+      const CutStokesSolve &solve;
+      static UpdateFlags
+      flags()
+      {
+        return update_gradients | update_hessians | update_JxW_values |
+               update_normal_vectors | update_quadrature_points;
+      }
+      const QGauss<dim - 1>                    q_face;
+      FEFaceValues<dim>                        fe_face, fe_neighbour;
+      FESubfaceValues<dim>                     fe_coarser;
+      std::vector<types::global_dof_index>     dofs, neighbour_dofs;
+      std::vector<std::array<unsigned int, 2>> local_of;
+      FullMatrix<double>                       jumps, signed_jumps;
+      std::vector<Tensor<1, dim>>              d1, d2;
+      std::vector<double>                      dp;
+    };
+
+    /// One ghost-penalty face's matrix on the union of its two cells'
+    /// DoFs.
+    struct FaceCopy
+    {
+      FullMatrix<double>                   face_matrix;
+      std::vector<types::global_dof_index> face_dofs;
+    };
+
+    /// The matrices of one fluid @p cell (none for a cell inside a
+    /// particle): the volume terms and, if it is cut, the Nitsche terms.
     void
-    add_volume(const FEValues<dim> &fe_values);
+    assemble_cell(const cell_iterator &cell,
+                  CellScratch         &scratch,
+                  CellCopy            &copy) const;
+
+    /// Add the fluid terms of one cell on the quadrature @p fe_values to
+    /// the cell matrix and its pressure mass matrix.
+    void
+    add_volume(const FEValues<dim> &fe_values,
+               CellScratch         &scratch,
+               CellCopy            &copy) const;
 
     /// Add the Nitsche terms of the surface of ball @p P in the cut
-    /// @p cell of size @p h, on the generator's surface quadrature.
+    /// @p cell of size @p h, on the scratch generator's surface quadrature.
     void
-    add_nitsche(const cell_iterator &cell, const Ball &P, const double h);
+    add_nitsche(const cell_iterator &cell,
+                const Ball          &P,
+                const double         h,
+                CellScratch         &scratch,
+                CellCopy            &copy) const;
 
-    /// Add the cell matrix to the global ones (and the pressure mass
+    /// Add one cell's matrices to the global ones (and the pressure mass
     /// matrix for the iterative solver).
     void
-    distribute_cell();
+    distribute_cell(const CellCopy &copy);
+
+    /// The ghost-penalty matrix of one face.
+    void
+    assemble_face(const GhostFace &ghost,
+                  FaceScratch     &scratch,
+                  FaceCopy        &copy) const;
 
     /// The symmetric diagonal scaling of the system, applied to the
     /// matrix: velocity and rigid unknowns by their diagonal, pressures by
@@ -405,21 +493,16 @@ namespace Fidus
     std::vector<unsigned int> pressure_shapes;
     Vector<double>            rhs, solution;
 
-    /// The cell scratch: matrix and right-hand side on the cell's shape
-    /// functions and its particle's rigid unknowns (extended indices), and
-    /// the pressure mass matrix with its DoFs.
+    /// The extended indices of a fluid cell (its shape functions and its
+    /// particle's rigid unknowns); a zero right-hand side on them; the
+    /// pressure DoFs of a cell.
     unsigned int                         n_ext = 0;
-    FullMatrix<double>                   local;
     Vector<double>                       local_rhs;
-    std::vector<types::global_dof_index> ext_dofs;
-    FullMatrix<double>                   local_pressure;
     std::vector<types::global_dof_index> pressure_dof_indices;
-    /// Strain, divergence and pressure of each shape function at one
-    /// quadrature point.
-    std::vector<SymmetricTensor<2, dim>> eps;
-    std::vector<double>                  div, q_shape;
+    /// A full fluid cell's matrix and pressure mass matrix, per level.
+    std::map<int, std::pair<FullMatrix<double>, FullMatrix<double>>> full_cells;
 
-    /// The cut cells' quadratures.
+    /// The cut cells' quadratures, for the stresslets after the solve.
     std::unique_ptr<const hp::QCollection<1>>              q1d;
     std::unique_ptr<NonMatching::QuadratureGenerator<dim>> generator;
     /// The unit box, the reference cell of the cut cells' level sets.

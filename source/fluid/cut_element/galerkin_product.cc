@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cstddef>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
 #include <fidus/fluid/cut_element/galerkin_product.h>
 #include <limits>
 #include <vector>
@@ -64,10 +66,29 @@ namespace Fidus
       return t;
     }
 
+    /// Call @p f(first, last) on as many consecutive ranges of the rows
+    /// 0 to @p n_rows as there are threads, each on its own thread.
+    template <typename F>
+    void
+    on_row_ranges(const unsigned int n_rows, const F &f)
+    {
+      const unsigned int n_ranges =
+        std::max(1u, std::min(n_rows, MultithreadInfo::n_threads()));
+      Threads::TaskGroup<void> tasks;
+      for (unsigned int k = 0; k < n_ranges; ++k)
+        {
+          const unsigned int first = std::size_t(n_rows) * k / n_ranges,
+                             last  = std::size_t(n_rows) * (k + 1) / n_ranges;
+          tasks += Threads::new_task([&f, first, last]() { f(first, last); });
+        }
+      tasks.join_all();
+    }
+
     /**
      * X Y, row by row: row i of the product accumulates, over the entries
      * x_ij of row i of X, x_ij times row j of Y. @p x_row(i, f) calls
-     * f(j, x_ij) for those entries.
+     * f(j, x_ij) for those entries. The rows are split among the threads;
+     * each row is summed in the same order on any number of them.
      */
     template <typename XRow>
     Rows
@@ -77,48 +98,58 @@ namespace Fidus
       Rows                   r;
       r.n_rows = n_rows;
       r.n_cols = y.n_cols;
-      r.start.reserve(n_rows + 1);
-      std::vector<double>       sum(y.n_cols, 0.);
-      std::vector<unsigned int> last_row(y.n_cols, none);
-      std::vector<unsigned int> touched;
       // A first pass counts each row's columns, so that the product is
       // allocated once at its size (a growing array would double it).
-      std::size_t n_entries = 0;
+      r.start.assign(n_rows + 1, 0);
+      on_row_ranges(n_rows,
+                    [&](const unsigned int first, const unsigned int last) {
+                      std::vector<unsigned int> last_row(y.n_cols, none);
+                      for (unsigned int i = first; i < last; ++i)
+                        x_row(i, [&](const unsigned int j, const double) {
+                          for (std::size_t k = y.start[j]; k < y.start[j + 1];
+                               ++k)
+                            if (last_row[y.column[k]] != i)
+                              {
+                                last_row[y.column[k]] = i;
+                                ++r.start[i + 1];
+                              }
+                        });
+                    });
       for (unsigned int i = 0; i < n_rows; ++i)
-        x_row(i, [&](const unsigned int j, const double) {
-          for (std::size_t k = y.start[j]; k < y.start[j + 1]; ++k)
-            if (last_row[y.column[k]] != i)
-              {
-                last_row[y.column[k]] = i;
-                ++n_entries;
-              }
-        });
-      r.column.reserve(n_entries);
-      r.value.reserve(n_entries);
-      std::fill(last_row.begin(), last_row.end(), none);
-      for (unsigned int i = 0; i < n_rows; ++i)
-        {
-          touched.clear();
-          x_row(i, [&](const unsigned int j, const double x_ij) {
-            for (std::size_t k = y.start[j]; k < y.start[j + 1]; ++k)
-              {
-                const unsigned int col = y.column[k];
-                if (last_row[col] != i)
-                  {
-                    last_row[col] = i;
-                    sum[col]      = 0.;
-                    touched.push_back(col);
-                  }
-                sum[col] += x_ij * y.value[k];
-              }
-          });
-          for (const unsigned int col : touched)
+        r.start[i + 1] += r.start[i];
+      r.column.resize(r.start[n_rows]);
+      r.value.resize(r.start[n_rows]);
+      on_row_ranges(
+        n_rows,
+        [&](const unsigned int first, const unsigned int last) {
+          std::vector<double>       sum(y.n_cols, 0.);
+          std::vector<unsigned int> last_row(y.n_cols, none);
+          std::vector<unsigned int> touched;
+          for (unsigned int i = first; i < last; ++i)
             {
-              r.column.push_back(col);
-              r.value.push_back(sum[col]);
+              touched.clear();
+              x_row(i, [&](const unsigned int j, const double x_ij) {
+                for (std::size_t k = y.start[j]; k < y.start[j + 1]; ++k)
+                  {
+                    const unsigned int col = y.column[k];
+                    if (last_row[col] != i)
+                      {
+                        last_row[col] = i;
+                        sum[col]      = 0.;
+                        touched.push_back(col);
+                      }
+                    sum[col] += x_ij * y.value[k];
+                  }
+              });
+              std::size_t to = r.start[i];
+              for (const unsigned int col : touched)
+                {
+                  r.column[to] = col;
+                  r.value[to]  = sum[col];
+                  ++to;
+                }
             }
-          r.start.push_back(r.column.size());
-        }
+        });
       return r;
     }
 
@@ -180,16 +211,21 @@ namespace Fidus
                       views.begin(),
                       views.end());
     c.reinit(pattern);
-    std::vector<double> row_values(product.n_cols, 0.);
-    for (unsigned int i = 0; i < product.n_rows; ++i)
-      {
-        for (std::size_t k = product.start[i]; k < product.start[i + 1]; ++k)
-          row_values[product.column[k]] = product.value[k];
-        for (auto e = c.begin(i); e != c.end(i); ++e)
-          {
-            e->value()              = row_values[e->column()];
-            row_values[e->column()] = 0.;
-          }
-      }
+    on_row_ranges(product.n_rows,
+                  [&](const unsigned int first, const unsigned int last) {
+                    std::vector<double> row_values(product.n_cols, 0.);
+                    for (unsigned int i = first; i < last; ++i)
+                      {
+                        for (std::size_t k = product.start[i];
+                             k < product.start[i + 1];
+                             ++k)
+                          row_values[product.column[k]] = product.value[k];
+                        for (auto e = c.begin(i); e != c.end(i); ++e)
+                          {
+                            e->value()              = row_values[e->column()];
+                            row_values[e->column()] = 0.;
+                          }
+                      }
+                  });
   }
 } // namespace Fidus

@@ -1,0 +1,61 @@
+#ifndef fidus_fluid_cut_element_element_sparsity_h
+#define fidus_fluid_cut_element_element_sparsity_h
+
+#include <cstddef>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * A square sparsity pattern built from the DoF lists of elements (cells,
+   * faces, or any group of unknowns that couple all with all), through
+   * hanging-node and boundary constraints, row by row on the machine's
+   * threads.
+   *
+   * add_element() records what AffineConstraints::
+   * add_entries_local_to_global() with keep_constrained_entries would add
+   * for the list: every pair of the list's unconstrained DoFs and the DoFs
+   * its constrained ones are constrained to, and every pair of the list's
+   * own DoFs one of which is constrained. build() then forms each row's
+   * columns from the elements that touch it (a marker array per thread
+   * instead of sorted insertions), which is what a
+   * DynamicSparsityPattern's sorted rows made the longest part of a cut
+   * element solve's set-up after the solver. The pattern holds the same
+   * entries, and every diagonal.
+   */
+  class ElementSparsity
+  {
+  public:
+    /// A pattern of @p n_dofs rows and columns, through @p constraints
+    /// (closed), which must outlive the object.
+    ElementSparsity(const unsigned int               n_dofs,
+                    const AffineConstraints<double> &constraints);
+
+    /// Couple the DoFs @p dofs all with all, through the constraints.
+    void
+    add_element(const std::vector<types::global_dof_index> &dofs);
+
+    /// Fill @p pattern with the couplings of all elements added.
+    void
+    build(SparsityPattern &pattern) const;
+
+  private:
+    const unsigned int               n;
+    const AffineConstraints<double> &constraints;
+
+    /// Per element, three column lists, concatenated: its resolved DoFs
+    /// (U: unconstrained DoFs and the DoFs the constrained ones are
+    /// constrained to), its constrained DoFs (C) and its own DoFs (L).
+    /// A row in U and L takes U and C, a row in U alone takes U, and a
+    /// row in C takes L.
+    std::vector<unsigned int> columns;
+    /// Where each element's lists start in columns: U, C, L, end.
+    std::vector<std::size_t> starts;
+  };
+} // namespace Fidus
+
+#endif

@@ -1,0 +1,435 @@
+#include "cut_stokes_solve.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deal.II/base/work_stream.h>
+#include <deal.II/non_matching/fe_immersed_values.h>
+#include <fidus/fluid/cut_element/cut_level_set.h>
+#include <fidus/fluid/fictitious_domain/rigid_mode.h>
+#include <stdexcept>
+
+// The assembly stages of CutStokesSolve: the fluid cells (volume and
+// Nitsche terms), the ghost penalties and the rigid couplings. Cells and
+// faces are computed on the machine's cores (WorkStream: one scratch per
+// thread) and added to the global matrices by one thread in the cells'
+// order, so that the system is the same, to the bit, on any number of
+// threads.
+
+namespace Fidus
+{
+  template <int dim>
+  CutStokesSolve<dim>::CellScratch::CellScratch(const CutStokesSolve &solve)
+    : solve(solve)
+    , q1d(QGauss<1>(solve.s.quadrature_points))
+    , generator(q1d)
+    , fe_fluid(solve.mapping,
+               solve.taylor_hood,
+               solve.q_cell,
+               update_gradients | update_values | update_JxW_values)
+    , dofs(solve.n_local)
+    , eps(solve.n_local)
+    , div(solve.n_local)
+    , q_shape(solve.n_local)
+    , jump(solve.n_ext)
+    , traction(solve.n_ext)
+    , p_shape(solve.n_ext)
+  {}
+
+  template <int dim>
+  CutStokesSolve<dim>::CellCopy::CellCopy(const CutStokesSolve &solve)
+    : local(solve.n_ext, solve.n_ext)
+    , local_pressure(solve.pressure_shapes.size(), solve.pressure_shapes.size())
+    , ext_dofs(solve.n_ext)
+  {}
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_volume(const FEValues<dim> &fe_values,
+                                  CellScratch         &scratch,
+                                  CellCopy            &copy) const
+  {
+    // The fluid terms of one cell on the quadrature @p fe_values, with the
+    // shape functions' strain, divergence and pressure evaluated once per
+    // point rather than once per pair of them.
+    auto &eps = scratch.eps, &q_shape = scratch.q_shape;
+    auto &div = scratch.div;
+    for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+      {
+        const double JxW = fe_values.JxW(q);
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            eps[i]     = fe_values[velocity].symmetric_gradient(i, q);
+            div[i]     = fe_values[velocity].divergence(i, q);
+            q_shape[i] = fe_values[pressure].value(i, q);
+          }
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            const SymmetricTensor<2, dim> e = 2. * eta * JxW * eps[i];
+            const double d = JxW * div[i], p = JxW * q_shape[i];
+            for (unsigned int j = 0; j < n_local; ++j)
+              copy.local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
+          }
+        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+            copy.local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
+                                         q_shape[pressure_shapes[b]] / eta;
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_nitsche(const cell_iterator &cell,
+                                   const Ball          &P,
+                                   const double         h,
+                                   CellScratch         &scratch,
+                                   CellCopy            &copy) const
+  {
+    const auto &q_surface = scratch.generator.get_surface_quadrature();
+    NonMatching::FEImmersedSurfaceValues<dim> fe_surface(mapping,
+                                                         taylor_hood,
+                                                         q_surface,
+                                                         surface_flags);
+    fe_surface.reinit(cell);
+    const double gamma = s.nitsche * eta / h;
+    // Per extended index I: the trace of v - w_v, the traction's
+    // viscous part 2 eta eps(v) n and the pressure shape value.
+    auto &jump = scratch.jump, &traction = scratch.traction;
+    auto &p_shape = scratch.p_shape;
+    for (unsigned int q = 0; q < q_surface.size(); ++q)
+      {
+        // The fluid's outward normal points into the particle.
+        const Tensor<1, dim> n = -fe_surface.normal_vector(q);
+        const Tensor<1, dim> r = fe_surface.quadrature_point(q) - P.center;
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            jump[i] = fe_surface[velocity].value(i, q);
+            traction[i] =
+              2. * eta * (fe_surface[velocity].symmetric_gradient(i, q) * n);
+            p_shape[i] = fe_surface[pressure].value(i, q);
+          }
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          {
+            jump[n_local + k]     = -rigid_mode<dim>(k, r);
+            traction[n_local + k] = Tensor<1, dim>();
+            p_shape[n_local + k]  = 0.;
+          }
+        const double JxW = fe_surface.JxW(q);
+        for (unsigned int i = 0; i < n_ext; ++i)
+          for (unsigned int j = 0; j < n_ext; ++j)
+            copy.local(i, j) +=
+              (-traction[j] * jump[i] + p_shape[j] * (jump[i] * n) -
+               traction[i] * jump[j] + p_shape[i] * (jump[j] * n) +
+               gamma * jump[i] * jump[j]) *
+              JxW;
+      }
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_cell(const cell_iterator &cell,
+                                     CellScratch         &scratch,
+                                     CellCopy            &copy) const
+  {
+    copy.fluid = cell->active_fe_index() == 0;
+    if (!copy.fluid)
+      return;
+    cell->get_dof_indices(scratch.dofs);
+    std::copy(scratch.dofs.begin(), scratch.dofs.end(), copy.ext_dofs.begin());
+    const Placement &here = placed(cell);
+    const auto      &P    = mesh->get_balls()[here.ball];
+    for (unsigned int k = 0; k < n_rigid; ++k)
+      copy.ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
+    if (here.n_cut == 0)
+      {
+        // A cell without a surface is a full square of its level's size:
+        // its matrices were computed once for the level.
+        const auto &cached  = full_cells.at(cell->level());
+        copy.local          = cached.first;
+        copy.local_pressure = cached.second;
+        return;
+      }
+    copy.local          = 0.;
+    copy.local_pressure = 0.;
+    const double h      = cell->extent_in_direction(0);
+    scratch.generator.generate(
+      CutLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
+      unit_box);
+    const Quadrature<dim> &q_outside =
+      scratch.generator.get_outside_quadrature();
+    if (q_outside.size() > 0)
+      {
+        FEValues<dim> fe_cut(mapping,
+                             taylor_hood,
+                             q_outside,
+                             update_gradients | update_values |
+                               update_JxW_values);
+        fe_cut.reinit(cell);
+        add_volume(fe_cut, scratch, copy);
+      }
+    if (scratch.generator.get_surface_quadrature().size() > 0)
+      add_nitsche(cell, P, h, scratch, copy);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::distribute_cell(const CellCopy &copy)
+  {
+    if (!copy.fluid)
+      return;
+    for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
+      {
+        pressure_dof_indices[a] = copy.ext_dofs[pressure_shapes[a]];
+        local_pressure_mean[a]  = 0.;
+        for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
+          local_pressure_mean[a] += copy.local_pressure(a, b);
+      }
+    constraints.distribute_local_to_global(local_pressure_mean,
+                                           pressure_dof_indices,
+                                           pressure_mean);
+    if (iterative)
+      constraints.distribute_local_to_global(copy.local_pressure,
+                                             pressure_dof_indices,
+                                             pressure_mass);
+    if (periodic)
+      unconstrained.add(copy.ext_dofs, copy.local);
+    // The cells carry no load: the right-hand side comes from the
+    // constraints' inhomogeneities (the imposed velocities).
+    constraints.distribute_local_to_global(copy.local,
+                                           local_rhs,
+                                           copy.ext_dofs,
+                                           matrix,
+                                           rhs);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_cells()
+  {
+    // The generator of the stages after the solve (the stresslets).
+    q1d = std::make_unique<const hp::QCollection<1>>(
+      QGauss<1>(s.quadrature_points));
+    generator = std::make_unique<NonMatching::QuadratureGenerator<dim>>(*q1d);
+
+    CellScratch scratch(*this);
+    CellCopy    copy(*this);
+    // The full cells' matrices, once per level, before the threads read
+    // them.
+    full_cells.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->active_fe_index() == 0 && placed(cell).n_cut == 0 &&
+          full_cells.count(cell->level()) == 0)
+        {
+          copy.local          = 0.;
+          copy.local_pressure = 0.;
+          scratch.fe_fluid.reinit(cell);
+          add_volume(scratch.fe_fluid, scratch, copy);
+          full_cells.emplace(cell->level(),
+                             std::make_pair(copy.local, copy.local_pressure));
+        }
+    WorkStream::run(
+      dof_handler.begin_active(),
+      dof_handler.end(),
+      [this](const cell_iterator &cell, CellScratch &sc, CellCopy &cp) {
+        assemble_cell(cell, sc, cp);
+      },
+      [this](const CellCopy &cp) { distribute_cell(cp); },
+      scratch,
+      copy);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_couplings()
+  {
+    // The rigid rows read A x = F: the fluid's traction and the external
+    // force. A resistance whose load on the particles is -M x + l joins
+    // them as (A + M) x = F + l.
+    for (const auto &c : s.couplings)
+      {
+        const unsigned int m = c.owners.size() * n_rigid;
+        AssertThrow(c.matrix.size() == m && c.load.size() == m,
+                    ExcMessage("a rigid coupling of the wrong size"));
+        const auto row = [&](const unsigned int k) {
+          return n_fluid + c.owners[k / n_rigid] * n_rigid + k % n_rigid;
+        };
+        for (unsigned int k = 0; k < m; ++k)
+          {
+            AssertThrow(c.owners[k / n_rigid] < particles.size(),
+                        ExcMessage("a rigid coupling of a particle that "
+                                   "is not there"));
+            rhs(row(k)) += c.load[k];
+            for (unsigned int l = 0; l < m; ++l)
+              matrix.add(row(k), row(l), c.matrix[k][l]);
+          }
+      }
+  }
+
+
+  template <int dim>
+  CutStokesSolve<dim>::FaceScratch::FaceScratch(const CutStokesSolve &solve)
+    : solve(solve)
+    , q_face(3)
+    , fe_face(solve.mapping, solve.taylor_hood, q_face, flags())
+    , fe_neighbour(solve.mapping, solve.taylor_hood, q_face, flags())
+    , fe_coarser(solve.mapping, solve.taylor_hood, q_face, flags())
+    , dofs(solve.n_local)
+    , neighbour_dofs(solve.n_local)
+    , local_of(solve.n_local)
+  {}
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_face(const GhostFace &ghost,
+                                     FaceScratch     &scratch,
+                                     FaceCopy        &copy) const
+  {
+    // The two cells share the DoFs of their common face, so the face's
+    // unknowns are the union of both cells' (as FEInterfaceValues numbers
+    // them): a shared DoF's jump takes the contributions of both sides.
+    const auto &cell      = ghost.cell;
+    const auto &neighbour = ghost.neighbour;
+    const bool  coarser   = ghost.subface != numbers::invalid_unsigned_int;
+    auto       &fe_face   = scratch.fe_face;
+    auto       &q_face    = scratch.q_face;
+    fe_face.reinit(cell, ghost.face);
+    if (coarser)
+      scratch.fe_coarser.reinit(neighbour, ghost.neighbour_face, ghost.subface);
+    else
+      scratch.fe_neighbour.reinit(neighbour, ghost.neighbour_face);
+    const FEFaceValuesBase<dim> &fe_other =
+      coarser ?
+        static_cast<const FEFaceValuesBase<dim> &>(scratch.fe_coarser) :
+        static_cast<const FEFaceValuesBase<dim> &>(scratch.fe_neighbour);
+    auto &dofs = scratch.dofs, &neighbour_dofs = scratch.neighbour_dofs;
+    auto &local_of  = scratch.local_of;
+    auto &face_dofs = copy.face_dofs;
+    cell->get_dof_indices(dofs);
+    neighbour->get_dof_indices(neighbour_dofs);
+    face_dofs = dofs;
+    for (unsigned int i = 0; i < n_local; ++i)
+      {
+        local_of[i][0] = i;
+        const auto it  = std::find(dofs.begin(), dofs.end(), neighbour_dofs[i]);
+        if (it != dofs.end())
+          local_of[i][1] = it - dofs.begin();
+        else
+          {
+            local_of[i][1] = face_dofs.size();
+            face_dofs.push_back(neighbour_dofs[i]);
+          }
+      }
+    const unsigned int n_face = face_dofs.size();
+    // Per quadrature point: the dim first and dim second normal-derivative
+    // jumps of the velocity and the pressure's jump.
+    constexpr unsigned int n_jumps = 2 * dim + 1;
+    // The face matrix is sum_q JxW (w_v h d1 d1^T + w_v h^3 d2 d2^T -
+    // w_p h^3 dp dp^T): the jumps, weighted by the square roots, are
+    // the columns of J, and the face matrix is J S J^T with S the
+    // signs (one matrix product instead of a double loop per point).
+    auto &jumps = scratch.jumps, &signed_jumps = scratch.signed_jumps;
+    auto &d1 = scratch.d1, &d2 = scratch.d2;
+    auto &dp = scratch.dp;
+    copy.face_matrix.reinit(n_face, n_face);
+    jumps.reinit(n_face, q_face.size() * n_jumps);
+    signed_jumps.reinit(n_face, q_face.size() * n_jumps);
+    // Across a hanging face, the mean of the two cells' sizes.
+    const double h =
+      0.5 * (cell->extent_in_direction(0) + neighbour->extent_in_direction(0));
+    for (unsigned int q = 0; q < q_face.size(); ++q)
+      {
+        if ((fe_face.quadrature_point(q) - fe_other.quadrature_point(q) -
+             ghost.shift)
+              .norm() > 1e-12 * h)
+          throw std::logic_error("CutStokesInclusion: face quadrature "
+                                 "points do not match");
+        const Tensor<1, dim> n = fe_face.normal_vector(q);
+        d1.assign(n_face, Tensor<1, dim>());
+        d2.assign(n_face, Tensor<1, dim>());
+        dp.assign(n_face, 0.);
+        for (unsigned int side = 0; side < 2; ++side)
+          {
+            const FEFaceValuesBase<dim> &fv   = side == 0 ? fe_face : fe_other;
+            const double                 sign = side == 0 ? 1. : -1.;
+            for (unsigned int i = 0; i < n_local; ++i)
+              {
+                const unsigned int I    = local_of[i][side];
+                const auto         grad = fv[velocity].gradient(i, q);
+                const auto         hess = fv[velocity].hessian(i, q);
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    d1[I][c] += sign * (grad[c] * n);
+                    d2[I][c] += sign * (n * (hess[c] * n));
+                  }
+                dp[I] += sign * (fv[pressure].gradient(i, q) * n);
+              }
+          }
+        const double JxW = fe_face.JxW(q);
+        const double w1  = std::sqrt(s.ghost_velocity * eta * h * JxW),
+                     w2  = std::sqrt(s.ghost_velocity * eta * h * h * h * JxW),
+                     wp  = std::sqrt(s.ghost_pressure / eta * h * h * h * JxW);
+        const unsigned int first = q * n_jumps;
+        for (unsigned int i = 0; i < n_face; ++i)
+          {
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                jumps(i, first + c) = signed_jumps(i, first + c) =
+                  w1 * d1[i][c];
+                jumps(i, first + dim + c) = signed_jumps(i, first + dim + c) =
+                  w2 * d2[i][c];
+              }
+            jumps(i, first + 2 * dim)        = wp * dp[i];
+            signed_jumps(i, first + 2 * dim) = -wp * dp[i];
+          }
+      }
+    jumps.mTmult(copy.face_matrix, signed_jumps);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::assemble_ghost_penalties()
+  {
+    FaceScratch    scratch(*this);
+    FaceCopy       copy;
+    Vector<double> face_rhs;
+    WorkStream::run(
+      ghost_faces.begin(),
+      ghost_faces.end(),
+      [this](const typename std::vector<GhostFace>::iterator &ghost,
+             FaceScratch                                     &sc,
+             FaceCopy &cp) { assemble_face(*ghost, sc, cp); },
+      [this, &face_rhs](const FaceCopy &cp) {
+        if (periodic)
+          unconstrained.add(cp.face_dofs, cp.face_matrix);
+        // With the right-hand side: a face next to the box's boundary
+        // couples to DoFs with imposed velocity, whose values move to it.
+        face_rhs.reinit(cp.face_dofs.size());
+        constraints.distribute_local_to_global(cp.face_matrix,
+                                               face_rhs,
+                                               cp.face_dofs,
+                                               matrix,
+                                               rhs);
+      },
+      scratch,
+      copy);
+  }
+
+  template struct CutStokesSolve<2>::CellScratch;
+  template struct CutStokesSolve<2>::CellCopy;
+  template struct CutStokesSolve<2>::FaceScratch;
+  template void
+  CutStokesSolve<2>::assemble_cells();
+  template void
+  CutStokesSolve<2>::assemble_ghost_penalties();
+  template void
+  CutStokesSolve<2>::assemble_couplings();
+  template struct CutStokesSolve<3>::CellScratch;
+  template struct CutStokesSolve<3>::CellCopy;
+  template struct CutStokesSolve<3>::FaceScratch;
+  template void
+  CutStokesSolve<3>::assemble_cells();
+  template void
+  CutStokesSolve<3>::assemble_ghost_penalties();
+  template void
+  CutStokesSolve<3>::assemble_couplings();
+} // namespace Fidus

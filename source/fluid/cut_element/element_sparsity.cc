@@ -1,0 +1,169 @@
+#include <algorithm>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
+#include <fidus/fluid/cut_element/element_sparsity.h>
+#include <limits>
+
+namespace Fidus
+{
+  ElementSparsity::ElementSparsity(const unsigned int               n_dofs,
+                                   const AffineConstraints<double> &constraints)
+    : n(n_dofs)
+    , constraints(constraints)
+    , starts{0}
+  {}
+
+  void
+  ElementSparsity::add_element(const std::vector<types::global_dof_index> &dofs)
+  {
+    const std::size_t first = columns.size();
+    for (const auto i : dofs)
+      if (!constraints.is_constrained(i))
+        columns.push_back(i);
+      else
+        for (const auto &entry : *constraints.get_constraint_entries(i))
+          columns.push_back(entry.first);
+    // U without repeats: an element's columns are added once per row.
+    std::sort(columns.begin() + first, columns.end());
+    columns.erase(std::unique(columns.begin() + first, columns.end()),
+                  columns.end());
+    starts.push_back(columns.size());
+    for (const auto i : dofs)
+      if (constraints.is_constrained(i))
+        columns.push_back(i);
+    starts.push_back(columns.size());
+    columns.insert(columns.end(), dofs.begin(), dofs.end());
+    starts.push_back(columns.size());
+  }
+
+  void
+  ElementSparsity::build(SparsityPattern &pattern) const
+  {
+    const std::size_t n_elements = (starts.size() - 1) / 3;
+    const auto        list = [&](const std::size_t e, const unsigned int k) {
+      return std::make_pair(columns.data() + starts[3 * e + k],
+                            columns.data() + starts[3 * e + k + 1]);
+    };
+    // For each row, the elements that touch it and how: 0 through U (and
+    // not L), 1 through U and L, 2 through C. The pairs are sorted by row
+    // (a counting sort), the elements of a row in their order.
+    constexpr unsigned int     none = std::numeric_limits<unsigned int>::max();
+    std::vector<std::size_t>   row_start(n + 1, 0);
+    std::vector<unsigned char> in_l(n, 0);
+    const auto                 for_each_touch = [&](const auto &f) {
+      for (std::size_t e = 0; e < n_elements; ++e)
+        {
+          const auto [l0, l1] = list(e, 2);
+          for (auto p = l0; p != l1; ++p)
+            in_l[*p] = 1;
+          const auto [u0, u1] = list(e, 0);
+          for (auto p = u0; p != u1; ++p)
+            f(*p, e, in_l[*p] ? 1 : 0);
+          const auto [c0, c1] = list(e, 1);
+          for (auto p = c0; p != c1; ++p)
+            f(*p, e, 2);
+          for (auto p = l0; p != l1; ++p)
+            in_l[*p] = 0;
+        }
+    };
+    for_each_touch([&](const unsigned int row, std::size_t, unsigned char) {
+      ++row_start[row + 1];
+    });
+    for (unsigned int i = 0; i < n; ++i)
+      row_start[i + 1] += row_start[i];
+    std::vector<std::size_t>   touch_element(row_start[n]);
+    std::vector<unsigned char> touch_kind(row_start[n]);
+    {
+      std::vector<std::size_t> next(row_start.begin(), row_start.end() - 1);
+      for_each_touch(
+        [&](const unsigned int row, const std::size_t e, unsigned char kind) {
+          touch_element[next[row]] = e;
+          touch_kind[next[row]++]  = kind;
+        });
+    }
+
+    // Each row's columns: the lists of its elements without repeats, on
+    // four ranges of rows per thread (the rows near the particles are the
+    // long ones), counted first so that the pattern's columns are
+    // allocated once.
+    std::vector<std::size_t>  col_start(n + 1, 0);
+    std::vector<unsigned int> row_columns;
+    const auto                on_ranges = [&](const auto &f) {
+      const unsigned int n_ranges =
+        std::max(1u, std::min(n, 4 * MultithreadInfo::n_threads()));
+      Threads::TaskGroup<void> tasks;
+      for (unsigned int k = 0; k < n_ranges; ++k)
+        {
+          const unsigned int first = std::size_t(n) * k / n_ranges,
+                             last = std::size_t(n) * (k + 1) / n_ranges;
+          tasks += Threads::new_task([&f, first, last]() { f(first, last); });
+        }
+      tasks.join_all();
+    };
+    const auto row_lists = [&](const unsigned int row, const auto &g) {
+      for (std::size_t t = row_start[row]; t < row_start[row + 1]; ++t)
+        {
+          const std::size_t e = touch_element[t];
+          if (touch_kind[t] == 2)
+            g(list(e, 2));
+          else
+            {
+              g(list(e, 0));
+              if (touch_kind[t] == 1)
+                g(list(e, 1));
+            }
+        }
+    };
+    for (const bool fill : {false, true})
+      {
+        if (fill)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              col_start[i + 1] += col_start[i];
+            row_columns.resize(col_start[n]);
+          }
+        on_ranges([&](const unsigned int first, const unsigned int last) {
+          std::vector<unsigned int> seen(n, none);
+          for (unsigned int row = first; row < last; ++row)
+            {
+              std::size_t to = fill ? col_start[row] : 0;
+              row_lists(row, [&](const auto &range) {
+                for (auto p = range.first; p != range.second; ++p)
+                  if (seen[*p] != row)
+                    {
+                      seen[*p] = row;
+                      if (fill)
+                        row_columns[to] = *p;
+                      ++to;
+                    }
+              });
+              if (!fill)
+                col_start[row + 1] = to;
+            }
+        });
+      }
+
+    struct RowView
+    {
+      using const_iterator = const unsigned int *;
+      const unsigned int *first, *last;
+      const_iterator
+      begin() const
+      {
+        return first;
+      }
+      const_iterator
+      end() const
+      {
+        return last;
+      }
+    };
+    std::vector<RowView> views;
+    views.reserve(n);
+    for (unsigned int i = 0; i < n; ++i)
+      views.push_back({row_columns.data() + col_start[i],
+                       row_columns.data() + col_start[i + 1]});
+    // copy_from adds every diagonal entry of a square pattern.
+    pattern.copy_from(n, n, views.begin(), views.end());
+  }
+} // namespace Fidus

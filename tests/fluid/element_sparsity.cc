@@ -1,0 +1,155 @@
+// ElementSparsity (the cut element's sparsity pattern): on Taylor-Hood
+// meshes with hanging nodes, boundary values and periodic faces, in 2D and
+// 3D, the pattern of the cells' DoF lists (each cell's list extended by
+// extra unknowns past the mesh's, as a cut cell is by its particle's rigid
+// unknowns, and unions of two neighbours' lists, as a ghost-penalty face's)
+// against deal.II's: a DynamicSparsityPattern filled by
+// AffineConstraints::add_entries_local_to_global with
+// keep_constrained_entries, copied into a SparsityPattern. The two must
+// hold the same entries, row by row. The rows are built in several ranges
+// (more than the threads), so the ranges' seams are crossed.
+
+#include "../fidus_test.h"
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_element/element_sparsity.h>
+
+using namespace dealii;
+using namespace FidusTest;
+
+namespace
+{
+  template <int dim>
+  void
+  check(const std::string &name)
+  {
+    Triangulation<dim> tria;
+    GridGenerator::hyper_cube(tria, 0., 1., true);
+    // Periodic in x, before any refinement.
+    std::vector<
+      GridTools::PeriodicFacePair<typename Triangulation<dim>::cell_iterator>>
+      pairs;
+    GridTools::collect_periodic_faces(tria, 0, 1, 0, pairs);
+    tria.add_periodicity(pairs);
+    tria.refine_global(2);
+    // Hanging nodes: refine the cells near the centre twice more (two
+    // levels meet, away from the periodic faces).
+    Point<dim> middle;
+    for (unsigned int d = 0; d < dim; ++d)
+      middle[d] = 0.5;
+    for (const double radius : {0.3, 0.2})
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->center().distance(middle) < radius)
+            cell->set_refine_flag();
+        tria.execute_coarsening_and_refinement();
+      }
+
+    const FESystem<dim> fe(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1);
+    DoFHandler<dim>     dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    AffineConstraints<double> constraints;
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    std::vector<
+      GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator>>
+      dof_pairs;
+    GridTools::collect_periodic_faces(dof_handler, 0, 1, 0, dof_pairs);
+    DoFTools::make_periodicity_constraints<dim, dim>(dof_pairs, constraints);
+    // Inhomogeneous velocities on y = 0 and y = 1.
+    const FEValuesExtractors::Vector velocity(0);
+    for (const types::boundary_id b : {2, 3})
+      VectorTools::interpolate_boundary_values(
+        dof_handler,
+        b,
+        Functions::ConstantFunction<dim>(1., dim + 1),
+        constraints,
+        fe.component_mask(velocity));
+    constraints.close();
+
+    // Extra unknowns past the mesh's: four groups of six.
+    const unsigned int n_fluid = dof_handler.n_dofs(), n_extra = 24,
+                       n = n_fluid + n_extra;
+    DynamicSparsityPattern dsp(n, n);
+    Fidus::ElementSparsity elements(n, constraints);
+    const auto add = [&](const std::vector<types::global_dof_index> &list) {
+      constraints.add_entries_local_to_global(list, dsp, true);
+      elements.add_element(list);
+    };
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell()),
+      neighbour_dofs(fe.n_dofs_per_cell()), list;
+    unsigned int k = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        list = dofs;
+        // Every third cell takes a group of extra unknowns.
+        if (k++ % 3 == 0)
+          for (unsigned int e = 0; e < 6; ++e)
+            list.push_back(n_fluid + 6 * (k % 4) + e);
+        add(list);
+        // The union with the neighbour across face 1, where it is active.
+        if (!cell->at_boundary(1) && cell->neighbor(1)->is_active())
+          {
+            cell->neighbor(1)->get_dof_indices(neighbour_dofs);
+            list = dofs;
+            for (const auto j : neighbour_dofs)
+              if (std::find(dofs.begin(), dofs.end(), j) == dofs.end())
+                list.push_back(j);
+            add(list);
+          }
+      }
+    // Two groups coupled with each other.
+    list.clear();
+    for (unsigned int e = 0; e < 12; ++e)
+      list.push_back(n_fluid + e);
+    add(list);
+
+    SparsityPattern expected, built;
+    expected.copy_from(dsp);
+    elements.build(built);
+    unsigned int differing_rows = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        std::vector<unsigned int> a, b;
+        for (auto it = expected.begin(i); it != expected.end(i); ++it)
+          a.push_back(it->column());
+        for (auto it = built.begin(i); it != built.end(i); ++it)
+          b.push_back(it->column());
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        differing_rows += (a != b);
+      }
+    check_range(name + ": rows", built.n_rows(), n, n);
+    check_range(name + ": rows whose columns differ from deal.II's",
+                differing_rows,
+                0,
+                0);
+    check_range(name + ": entries, relative to deal.II's",
+                double(built.n_nonzero_elements()) /
+                  expected.n_nonzero_elements(),
+                1.,
+                1.);
+    check_range(name + ": constrained DoFs (some of each kind)",
+                constraints.n_constraints() > n_fluid / 20 ? 1 : 0,
+                1,
+                1);
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check<2>("2D");
+  check<3>("3D");
+  return exit_code();
+}
