@@ -243,8 +243,9 @@ namespace Fidus
   {
     // One rank (the constructor refuses more).
     const auto &t = r.stage_seconds;
-    std::cout << "    cut element: " << r.n_dofs << " unknowns, " << r.n_cells
-              << " cells (" << r.n_cut_cells << " cut), "
+    std::cout << "    cut element: " << r.n_dofs << " unknowns (" << r.n_entries
+              << " matrix entries), " << r.n_cells << " cells ("
+              << r.n_cut_cells << " cut), "
               << (r.n_iterations > 0 ?
                     "FGMRES " + std::to_string(r.n_iterations) :
                     std::string("direct"))

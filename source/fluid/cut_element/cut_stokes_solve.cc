@@ -232,34 +232,44 @@ namespace Fidus
 
   template <int dim>
   void
-  CutStokesSolve<dim>::check_memory() const
+  CutStokesSolve<dim>::check_memory(const bool with_pattern) const
   {
     // The budget counts the ranks of the machine; without MPI (a caller
     // that did not start it) there is no budget to keep.
     int mpi_started = 0;
     MPI_Initialized(&mpi_started);
-    if (!mpi_started)
+    const bool iterate = uses_iterative_solver();
+    if (!mpi_started || (with_pattern && !iterate))
       return;
-    // Peak bytes per unknown of a whole solve (the system, its pattern,
-    // the scaled copies, the solver and its vectors), measured on one rank
-    // (doc/theory/cut_element.md, "Memory"): 19-23 KB with the iterative
-    // solver in 3D (38 000 to 533 000 unknowns); the direct solver's
-    // factor fills in: 8-9.5 KB in 2D, 56-68 KB in 3D (38 000 and 94 000
-    // unknowns). The lower ends, so that a solve is stopped only when it
-    // would clearly not fit.
-    const bool         iterate     = uses_iterative_solver();
-    const double       per_unknown = iterate ? 18e3 : dim == 2 ? 7e3 : 50e3;
-    const double       needed      = per_unknown * double(n_total);
+    // Peak bytes of a whole solve (the system, its pattern, the scaled
+    // copies, the solver and its vectors), measured on one rank
+    // (doc/theory/cut_element.md, "Memory"). The iterative solver's peak
+    // follows the pattern's entries: 40.6-43.8 bytes per entry from one
+    // sphere (240 entries per unknown) to a dense suspension (700; per
+    // unknown 9.3 to 29 KB). Before the pattern, a bound per unknown below
+    // all of them. The direct solver's factor fills in: 8-11 KB per
+    // unknown in 2D, 56-68 KB in 3D. The lower ends, so that a solve is
+    // stopped only when it would clearly not fit.
+    const double per_unit = with_pattern ? 38. :
+                            iterate      ? 8e3 :
+                            dim == 2     ? 7e3 :
+                                           50e3;
+    const double units    = with_pattern ? double(result.n_entries) : n_total;
+    const double needed   = per_unit * units;
     const MemoryBudget budget(s.memory_limit, MPI_COMM_SELF);
     const double       free = budget.free_bytes();
     if (needed <= free)
       return;
     std::ostringstream m;
-    m << "the cut mesh has " << n_total << " unknowns; its "
-      << (iterate ? "iterative" : "direct") << " solve needs about "
-      << MemoryUsage::format(needed) << " (" << MemoryUsage::format(per_unknown)
-      << " per unknown), but this rank has " << MemoryUsage::format(free)
-      << " left (" << budget.source()
+    m << "the cut mesh has " << n_total << " unknowns";
+    if (with_pattern)
+      m << " and " << result.n_entries << " matrix entries";
+    m << "; its " << (iterate ? "iterative" : "direct") << " solve needs about "
+      << MemoryUsage::format(needed) << " ("
+      << (with_pattern ? std::to_string(int(per_unit)) + " B per entry" :
+                         MemoryUsage::format(per_unit) + " per unknown")
+      << "), but this rank has " << MemoryUsage::format(free) << " left ("
+      << budget.source()
       << "): raise 'Fluid/Cut minimum gap', lower 'Fluid/Cut gap cells' or "
          "'Mesh refinement/Maximum level', or set 'Fluid/Linear "
          "solver/Memory per rank' if the machine's figure is not what the "
@@ -317,6 +327,7 @@ namespace Fidus
     for (const auto &c : s.couplings)
       add_rigid(c.owners);
     elements.build(sparsity);
+    result.n_entries = sparsity.n_nonzero_elements();
   }
 
   template <int dim>

@@ -105,11 +105,12 @@ namespace Fidus
       classify_cells();
       stage.mesh = lap();
       setup_dofs_and_constraints();
-      check_memory();
+      check_memory(false);
       find_ghost_penalty_faces();
       make_sparsity_pattern();
       // The pattern's scratch is freed in many small blocks.
       MemoryUsage::release_free_memory();
+      check_memory(true);
       setup_system();
       stage.dofs = lap();
       assemble_cells();
@@ -203,9 +204,13 @@ namespace Fidus
 
     /// Throw, naming the unknowns, the estimate and what to change, if the
     /// system, its solver and their work space would not fit in
-    /// Settings::memory_limit (or what the machine has available).
+    /// Settings::memory_limit (or what the machine has available): before
+    /// the sparsity pattern from the unknowns alone (a bound below every
+    /// measured peak, so that only a mesh far too large stops there), and
+    /// with @p with_pattern, for the iterative solver, from the pattern's
+    /// entries, which set its peak.
     void
-    check_memory() const;
+    check_memory(const bool with_pattern) const;
 
     /// Collect the faces that carry a ghost penalty, each once.
     void

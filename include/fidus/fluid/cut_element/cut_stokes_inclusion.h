@@ -1,6 +1,7 @@
 #ifndef fidus_fluid_cut_stokes_inclusion_h
 #define fidus_fluid_cut_stokes_inclusion_h
 
+#include <cstddef>
 #include <deal.II/base/point.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
@@ -221,6 +222,8 @@ namespace Fidus
       Tensor<1, dim> top_wall_stress, bottom_wall_stress;
       /// Unknowns (fluid and rigid), active cells, cut cells.
       unsigned int n_dofs = 0, n_cells = 0, n_cut_cells = 0;
+      /// Entries of the system's sparsity pattern.
+      std::size_t n_entries = 0;
       /// Refinement flags set for thin gaps, over all passes, and for
       /// matching the periodic faces.
       unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
