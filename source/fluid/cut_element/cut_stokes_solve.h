@@ -319,9 +319,11 @@ namespace Fidus
       NonMatching::QuadratureGenerator<dim> generator;
       FEValues<dim>                         fe_fluid;
       std::vector<types::global_dof_index>  dofs;
-      /// Strain, divergence and pressure of each shape function.
-      std::vector<SymmetricTensor<2, dim>> eps;
-      std::vector<double>                  div, q_shape;
+      /// The pressure of each shape function at one point.
+      std::vector<double> q_shape;
+      /// The volume terms' weighted columns and their signed copy, and
+      /// their product (add_volume()).
+      FullMatrix<double> columns, signed_columns, product;
       /// Per extended index, on the surface: the trace of v - w_v, the
       /// viscous traction and the pressure.
       std::vector<Tensor<1, dim>> jump, traction;

@@ -60,8 +60,6 @@ namespace Fidus
                solve.q_cell,
                update_gradients | update_values | update_JxW_values)
     , dofs(solve.n_local)
-    , eps(solve.n_local)
-    , div(solve.n_local)
     , q_shape(solve.n_local)
     , jump(solve.n_ext)
     , traction(solve.n_ext)
@@ -81,32 +79,61 @@ namespace Fidus
                                   CellScratch         &scratch,
                                   CellCopy            &copy) const
   {
-    // The fluid terms of one cell on the quadrature @p fe_values, with the
-    // shape functions' strain, divergence and pressure evaluated once per
-    // point rather than once per pair of them.
-    auto &eps = scratch.eps, &q_shape = scratch.q_shape;
-    auto &div = scratch.div;
-    for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+    // The fluid terms of one cell on the quadrature @p fe_values as one
+    // matrix product (BLAS), local += J S^T: per point, the columns of J
+    // hold each shape function's strain (its symmetric components, the
+    // off-diagonal ones times sqrt 2, so that the column products give
+    // eps_i : eps_j), divergence and pressure, weighted by the square
+    // roots of 2 eta JxW and JxW; S holds the same strains and minus the
+    // pressure and divergence, so that the product is
+    // 2 eta eps_i : eps_j - div_i q_j - q_i div_j. A cut cell has hundreds
+    // of quadrature points, and a double loop over the shape functions per
+    // point was most of its assembly.
+    constexpr unsigned int n_strain = dim * (dim + 1) / 2;
+    constexpr unsigned int n_column = n_strain + 2;
+    const unsigned int     n_q      = fe_values.n_quadrature_points;
+    auto                  &J = scratch.columns, &S = scratch.signed_columns;
+    J.reinit(n_local, n_q * n_column);
+    S.reinit(n_local, n_q * n_column);
+    auto &q_shape = scratch.q_shape;
+    for (unsigned int q = 0; q < n_q; ++q)
       {
-        const double JxW = fe_values.JxW(q);
+        const double JxW      = fe_values.JxW(q),
+                     w_strain = std::sqrt(2. * eta * JxW), w = std::sqrt(JxW);
+        const unsigned int first = q * n_column;
         for (unsigned int i = 0; i < n_local; ++i)
           {
-            eps[i]     = fe_values[velocity].symmetric_gradient(i, q);
-            div[i]     = fe_values[velocity].divergence(i, q);
-            q_shape[i] = fe_values[pressure].value(i, q);
-          }
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            const SymmetricTensor<2, dim> e = 2. * eta * JxW * eps[i];
-            const double d = JxW * div[i], p = JxW * q_shape[i];
-            for (unsigned int j = 0; j < n_local; ++j)
-              copy.local(i, j) += e * eps[j] - d * q_shape[j] - p * div[j];
+            const SymmetricTensor<2, dim> e =
+              fe_values[velocity].symmetric_gradient(i, q);
+            unsigned int c = first;
+            for (unsigned int a = 0; a < dim; ++a)
+              J(i, c++) = w_strain * e[a][a];
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = a + 1; b < dim; ++b)
+                J(i, c++) = w_strain * std::sqrt(2.) * e[a][b];
+            for (unsigned int k = first; k < first + n_strain; ++k)
+              S(i, k) = J(i, k);
+            const double d         = w * fe_values[velocity].divergence(i, q);
+            q_shape[i]             = fe_values[pressure].value(i, q);
+            const double p         = w * q_shape[i];
+            J(i, first + n_strain) = d;
+            J(i, first + n_strain + 1) = p;
+            S(i, first + n_strain)     = -p;
+            S(i, first + n_strain + 1) = -d;
           }
         for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
           for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
             copy.local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
                                          q_shape[pressure_shapes[b]] / eta;
       }
+    // local is n_ext x n_ext; the volume terms fill its first n_local rows
+    // and columns.
+    auto &product = scratch.product;
+    product.reinit(n_local, n_local);
+    J.mTmult(product, S);
+    for (unsigned int i = 0; i < n_local; ++i)
+      for (unsigned int j = 0; j < n_local; ++j)
+        copy.local(i, j) += product(i, j);
   }
 
   template <int dim>
