@@ -1,12 +1,11 @@
 #include <Teuchos_ParameterList.hpp>
-#include <algorithm>
-#include <deal.II/base/parallel.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
+#include <fidus/fluid/cut_element/row_ranges.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <iterator>
 #include <sstream>
@@ -115,25 +114,25 @@ namespace Fidus
       views.shrink_to_fit();
       block.reinit(pattern);
       // The values, on the machine's threads (each row is its own).
-      parallel::apply_to_subranges(
-        0u,
-        static_cast<unsigned int>(rows.size()),
-        [&](const unsigned int first, const unsigned int last) {
-          std::vector<double> row_values(n_columns, 0.);
-          for (unsigned int k = first; k < last; ++k)
-            {
-              for (auto it = matrix.begin(rows[k]); it != matrix.end(rows[k]);
-                   ++it)
-                if (column(it->column()) >= 0)
-                  row_values[column(it->column())] = it->value();
-              for (auto it = block.begin(k); it != block.end(k); ++it)
-                {
-                  it->value()              = row_values[it->column()];
-                  row_values[it->column()] = 0.;
-                }
-            }
-        },
-        std::max<unsigned int>(1000, rows.size() / 8));
+      on_row_ranges(rows.size(),
+                    1,
+                    [&](const unsigned int first, const unsigned int last) {
+                      std::vector<double> row_values(n_columns, 0.);
+                      for (unsigned int k = first; k < last; ++k)
+                        {
+                          for (auto it = matrix.begin(rows[k]);
+                               it != matrix.end(rows[k]);
+                               ++it)
+                            if (column(it->column()) >= 0)
+                              row_values[column(it->column())] = it->value();
+                          for (auto it = block.begin(k); it != block.end(k);
+                               ++it)
+                            {
+                              it->value() = row_values[it->column()];
+                              row_values[it->column()] = 0.;
+                            }
+                        }
+                    });
     };
     const auto of_kind = [&](const unsigned char kind) {
       return [&, kind](const unsigned int j) {

@@ -1,7 +1,6 @@
 #include <algorithm>
-#include <deal.II/base/multithread_info.h>
-#include <deal.II/base/thread_management.h>
 #include <fidus/fluid/cut_element/element_sparsity.h>
+#include <fidus/fluid/cut_element/row_ranges.h>
 #include <limits>
 
 namespace Fidus
@@ -88,18 +87,6 @@ namespace Fidus
     // allocated once.
     std::vector<std::size_t>  col_start(n + 1, 0);
     std::vector<unsigned int> row_columns;
-    const auto                on_ranges = [&](const auto &f) {
-      const unsigned int n_ranges =
-        std::max(1u, std::min(n, 4 * MultithreadInfo::n_threads()));
-      Threads::TaskGroup<void> tasks;
-      for (unsigned int k = 0; k < n_ranges; ++k)
-        {
-          const unsigned int first = std::size_t(n) * k / n_ranges,
-                             last = std::size_t(n) * (k + 1) / n_ranges;
-          tasks += Threads::new_task([&f, first, last]() { f(first, last); });
-        }
-      tasks.join_all();
-    };
     const auto row_lists = [&](const unsigned int row, const auto &g) {
       for (std::size_t t = row_start[row]; t < row_start[row + 1]; ++t)
         {
@@ -122,48 +109,29 @@ namespace Fidus
               col_start[i + 1] += col_start[i];
             row_columns.resize(col_start[n]);
           }
-        on_ranges([&](const unsigned int first, const unsigned int last) {
-          std::vector<unsigned int> seen(n, none);
-          for (unsigned int row = first; row < last; ++row)
-            {
-              std::size_t to = fill ? col_start[row] : 0;
-              row_lists(row, [&](const auto &range) {
-                for (auto p = range.first; p != range.second; ++p)
-                  if (seen[*p] != row)
-                    {
-                      seen[*p] = row;
-                      if (fill)
-                        row_columns[to] = *p;
-                      ++to;
-                    }
-              });
-              if (!fill)
-                col_start[row + 1] = to;
-            }
-        });
+        on_row_ranges(n,
+                      4,
+                      [&](const unsigned int first, const unsigned int last) {
+                        std::vector<unsigned int> seen(n, none);
+                        for (unsigned int row = first; row < last; ++row)
+                          {
+                            std::size_t to = fill ? col_start[row] : 0;
+                            row_lists(row, [&](const auto &range) {
+                              for (auto p = range.first; p != range.second; ++p)
+                                if (seen[*p] != row)
+                                  {
+                                    seen[*p] = row;
+                                    if (fill)
+                                      row_columns[to] = *p;
+                                    ++to;
+                                  }
+                            });
+                            if (!fill)
+                              col_start[row + 1] = to;
+                          }
+                      });
       }
 
-    struct RowView
-    {
-      using const_iterator = const unsigned int *;
-      const unsigned int *first, *last;
-      const_iterator
-      begin() const
-      {
-        return first;
-      }
-      const_iterator
-      end() const
-      {
-        return last;
-      }
-    };
-    std::vector<RowView> views;
-    views.reserve(n);
-    for (unsigned int i = 0; i < n; ++i)
-      views.push_back({row_columns.data() + col_start[i],
-                       row_columns.data() + col_start[i + 1]});
-    // copy_from adds every diagonal entry of a square pattern.
-    pattern.copy_from(n, n, views.begin(), views.end());
+    pattern_from_rows(pattern, n, n, row_columns, col_start);
   }
 } // namespace Fidus

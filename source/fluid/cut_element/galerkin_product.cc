@@ -1,8 +1,7 @@
 #include <algorithm>
 #include <cstddef>
-#include <deal.II/base/multithread_info.h>
-#include <deal.II/base/thread_management.h>
 #include <fidus/fluid/cut_element/galerkin_product.h>
+#include <fidus/fluid/cut_element/row_ranges.h>
 #include <limits>
 #include <vector>
 
@@ -66,24 +65,6 @@ namespace Fidus
       return t;
     }
 
-    /// Call @p f(first, last) on as many consecutive ranges of the rows
-    /// 0 to @p n_rows as there are threads, each on its own thread.
-    template <typename F>
-    void
-    on_row_ranges(const unsigned int n_rows, const F &f)
-    {
-      const unsigned int n_ranges =
-        std::max(1u, std::min(n_rows, MultithreadInfo::n_threads()));
-      Threads::TaskGroup<void> tasks;
-      for (unsigned int k = 0; k < n_ranges; ++k)
-        {
-          const unsigned int first = std::size_t(n_rows) * k / n_ranges,
-                             last  = std::size_t(n_rows) * (k + 1) / n_ranges;
-          tasks += Threads::new_task([&f, first, last]() { f(first, last); });
-        }
-      tasks.join_all();
-    }
-
     /**
      * X Y, row by row: row i of the product accumulates, over the entries
      * x_ij of row i of X, x_ij times row j of Y. @p x_row(i, f) calls
@@ -102,6 +83,7 @@ namespace Fidus
       // allocated once at its size (a growing array would double it).
       r.start.assign(n_rows + 1, 0);
       on_row_ranges(n_rows,
+                    1,
                     [&](const unsigned int first, const unsigned int last) {
                       std::vector<unsigned int> last_row(y.n_cols, none);
                       for (unsigned int i = first; i < last; ++i)
@@ -121,6 +103,7 @@ namespace Fidus
       r.value.resize(r.start[n_rows]);
       on_row_ranges(
         n_rows,
+        1,
         [&](const unsigned int first, const unsigned int last) {
           std::vector<double>       sum(y.n_cols, 0.);
           std::vector<unsigned int> last_row(y.n_cols, none);
@@ -153,22 +136,6 @@ namespace Fidus
       return r;
     }
 
-    /// One row of a Rows, as SparsityPattern::copy_from reads it.
-    struct RowView
-    {
-      using const_iterator = const unsigned int *;
-      const unsigned int *first, *last;
-      const_iterator
-      begin() const
-      {
-        return first;
-      }
-      const_iterator
-      end() const
-      {
-        return last;
-      }
-    };
   } // namespace
 
 
@@ -200,18 +167,15 @@ namespace Fidus
         ap);
     }();
 
-    std::vector<RowView> views;
-    views.reserve(product.n_rows);
-    for (unsigned int i = 0; i < product.n_rows; ++i)
-      views.push_back({product.column.data() + product.start[i],
-                       product.column.data() + product.start[i + 1]});
-    // copy_from allocates every diagonal entry of a square pattern.
-    pattern.copy_from(product.n_rows,
+    // With every diagonal entry, as the multigrid needs.
+    pattern_from_rows(pattern,
+                      product.n_rows,
                       product.n_cols,
-                      views.begin(),
-                      views.end());
+                      product.column,
+                      product.start);
     c.reinit(pattern);
     on_row_ranges(product.n_rows,
+                  1,
                   [&](const unsigned int first, const unsigned int last) {
                     std::vector<double> row_values(product.n_cols, 0.);
                     for (unsigned int i = first; i < last; ++i)
