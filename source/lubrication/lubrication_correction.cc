@@ -1,8 +1,11 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fidus/contact/contact_error.h>
 #include <fidus/contact/vector_operations.h>
 #include <fidus/lubrication/lubrication_correction.h>
+#include <fidus/lubrication/step_mean_resistance.h>
+#include <limits>
 #include <string>
 
 namespace Fidus::Contact
@@ -547,6 +550,8 @@ namespace Fidus::Contact
     std::vector<double> x_star;
     /// The part of u* driven by the external forces; empty if not used.
     std::vector<double> x_force;
+    /// The rotational drags and the right-hand side of the true system.
+    std::vector<double> zeta_rot, rhs;
   };
 
 
@@ -763,8 +768,9 @@ namespace Fidus::Contact
     // A_true u = b by Jacobi-preconditioned conjugate gradients (A_true is
     // the drag plus a sum of positive semi-definite bond terms: symmetric
     // positive definite).
-    std::vector<double> &zeta = s.zeta, &x = s.x;
-    std::vector<double>  zeta_rot(n), rhs;
+    std::vector<double> &zeta = s.zeta, &x = s.x, &zeta_rot = s.zeta_rot,
+                        &rhs = s.rhs;
+    zeta_rot.resize(n);
     zeta.resize(n);
     x.resize(6 * n);
     for (std::size_t i = 0; i < n; ++i)
@@ -835,6 +841,37 @@ namespace Fidus::Contact
 
 
   void
+  LubricationCorrection::average_over_step(CorrectedSystem       &s,
+                                           const double           dt,
+                                           LubricationStatistics &stat)
+  {
+    StepMeanResistance    mean(bond,
+                            settings.dimension,
+                            settings.viscosity,
+                            settings.roughness,
+                            settings.gap_in_time == GapInTime::closing_mean);
+    LubricationStatistics inner;
+    for (unsigned int pass = 0; pass < 30; ++pass)
+      {
+        for (std::size_t k = 0; k < bond.size(); ++k)
+          {
+            LubricationBond &b = bond[k];
+            b.r_true =
+              mean.next_resistance(k,
+                                   b,
+                                   b.gap -
+                                     dt * closing_speed(b, gather(b, s.x)));
+          }
+        solve(s.zeta, s.zeta_rot, Resistance::true_gap, s.rhs, s.x, inner);
+        stat.converged &= inner.converged;
+        if (mean.take_largest_change() < 1e-3)
+          break;
+      }
+  }
+
+
+
+  void
   LubricationCorrection::add_step_opening(const std::vector<double> &zeta,
                                           const double               dt,
                                           std::vector<Vec3>         &u) const
@@ -888,8 +925,9 @@ namespace Fidus::Contact
     if (bond.empty())
       return stat;
 
-    const CorrectedSystem s =
-      solve_corrected_system(radii, u_star, w_star, stat);
+    CorrectedSystem s = solve_corrected_system(radii, u_star, w_star, stat);
+    if (dt > 0. && settings.gap_in_time != GapInTime::start)
+      average_over_step(s, dt, stat);
 
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < dim; ++d)

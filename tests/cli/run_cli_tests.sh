@@ -57,6 +57,11 @@ expect_error "cut entry with the fictitious domain" "Fluid/Cut velocity ghost pe
 expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \
   "$(base; cut_fluid '  set Lubrication correction = true
   set Lubrication range = 0.5')"
+expect_error "cut element with the lubrication's step mean" "Fluid/Lubrication gap in time' is not 'start' with 'Fluid/Model = cut finite element'.*allowed: start" \
+  "$(base; cut_fluid '  set Lubrication correction = true
+  set Lubrication gap in time = step mean')"
+expect_error "lubrication gap in time without the correction" "Fluid/Lubrication gap in time' is set without 'Fluid/Lubrication correction = true'.*allowed: start, or the correction on" \
+  "$(base; printf 'subsection Fluid\n  set Lubrication gap in time = closing mean\nend\n')"
 expect_error "cut element lubricated below the roughness" "Fluid/Cut minimum gap' has the value 0.001 with 'Fluid/Lubrication correction' and 'Contact/Roughness = 0.005'; allowed: a gap above the roughness" \
   "$(base; cut_fluid '  set Lubrication correction = true
   set Cut minimum gap = 1e-3')"

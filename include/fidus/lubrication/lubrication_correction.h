@@ -11,6 +11,18 @@
 
 namespace Fidus::Contact
 {
+  /// Which gaps' resistance slows a lubrication bond over a time step.
+  enum class GapInTime
+  {
+    /// the gap at the start of the step (explicit)
+    start,
+    /// the mean over the gaps the step passes through for a closing gap,
+    /// the start's for an opening one
+    closing_mean,
+    /// the mean over the gaps the step passes through, closing or opening
+    step_mean
+  };
+
   /// Settings of the sub-grid lubrication correction.
   struct LubricationSettings
   {
@@ -74,6 +86,9 @@ namespace Fidus::Contact
     /// which couples translations and rotations (h^-1/2 for discs, log(1/h)
     /// for spheres). false: the normal squeeze only.
     bool tangential = false;
+    /// With a step dt > 0 in correct(): the gaps whose squeeze resistance
+    /// slows each bond over the step (see StepMeanResistance).
+    GapInTime gap_in_time = GapInTime::start;
     /// Resistance of one particle to translation, force per velocity; 0:
     /// the isolated Stokes drag, 6 pi eta a in 3D and 4 pi eta per unit
     /// length in 2D.
@@ -467,6 +482,16 @@ namespace Fidus::Contact
     /// Stores in each bond the loads it adds to the corrected velocities.
     void
     compute_bond_loads(const CorrectedSystem &s);
+
+    /// LubricationSettings::gap_in_time other than start: re-solves the
+    /// corrected system of @p s with each bond's squeeze resistance
+    /// averaged over the gaps from its start to where the step of size
+    /// @p dt takes it, until those end gaps agree to a thousandth of the
+    /// start gaps (at most 30 solves).
+    void
+    average_over_step(CorrectedSystem       &s,
+                      double                 dt,
+                      LubricationStatistics &stat);
 
     /// Adds to @p u the Euler step's tangential opening of each pair (a time
     /// integration matter, hence after the bond loads).

@@ -67,6 +67,8 @@ namespace Fidus
     double wall_tangential_range = 1.;
     /// Also the tangential terms (Fluid/Lubrication tangential terms).
     bool tangential = true;
+    /// Fluid/Lubrication gap in time.
+    Contact::GapInTime gap_in_time = Contact::GapInTime::start;
   };
 } // namespace Fidus
 

@@ -196,6 +196,14 @@ namespace Fidus
       }
     if (!scene.lubrication.enabled)
       return;
+    // The cut element solves the bonds with the flow at the start's gaps.
+    if (scene.lubrication.gap_in_time != Contact::GapInTime::start)
+      throw InputError("entry 'Fluid/Lubrication gap in time' is not 'start' "
+                       "with " +
+                       model +
+                       ", which solves the correction's bonds together with "
+                       "the flow at the gaps of the step's start; allowed: "
+                       "start");
     if (!ranges_set.empty())
       throw InputError("entry 'Fluid/" + ranges_set.front() + "' is set with " +
                        model +
