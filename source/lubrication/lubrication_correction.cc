@@ -5,7 +5,6 @@
 #include <fidus/contact/vector_operations.h>
 #include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/lubrication/step_mean_resistance.h>
-#include <limits>
 #include <string>
 
 namespace Fidus::Contact
