@@ -18,7 +18,8 @@ unit. Here every method sees the same positions:
 3. The last row of each run's statistics.csv (the step's corrected
    stress), against the reference at the same configuration: the mean
    error (bias) and its scatter (standard deviation over the ensemble) of
-   eta_r (relative), N1 and the particle pressure Pi (over eta_f gamma).
+   eta_r (relative), N1, in 3D N2, and the particle pressure Pi (over
+   eta_f gamma).
    "mesh alone" is the first row of the first variant (the fictitious
    domain's solve at the configuration, before any correction; not shown
    for a cut-element prm, which solves its correction with the flow).
@@ -54,6 +55,8 @@ from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with
 PROG = "dense_configurations.py"
 QUANTITIES = (("relative_viscosity", "η_r"), ("normal_stress_difference_1", "N1"),
               ("particle_pressure", "Π"))
+# In 3D N2 is not -N1/2 (the 2D plane-strain rule), so it is shown too.
+QUANTITIES_3D = QUANTITIES[:2] + (("normal_stress_difference_2", "N2"),) + QUANTITIES[2:]
 
 
 def run(fidus, prm_text, overrides, folder, reuse, np_ranks=1):
@@ -79,8 +82,11 @@ def run(fidus, prm_text, overrides, folder, reuse, np_ranks=1):
         return list(csv.DictReader(f))
 
 
-def write_configurations(particles_csv, steps, work, dim):
-    """One positions file per step ('x y [z] radius' per particle)."""
+def write_configurations(particles_csv, steps, work, dim, walls):
+    """One positions file per step ('x y [z] radius' per particle). A
+    particle that the contact model holds on a wall (gap zero to round-off)
+    is moved inside by 1e-8 of its radius: fidus refuses a particle that
+    cuts the box."""
     rows = {}
     with open(particles_csv, newline="") as f:
         for r in csv.DictReader(f):
@@ -91,7 +97,9 @@ def write_configurations(particles_csv, steps, work, dim):
         path = os.path.abspath(os.path.join(work, f"configuration_{step}.txt"))
         with open(path, "w") as f:
             for r in rows[step]:
-                coords = [r["x"], r["y"], r["z"]][:dim]
+                a = float(r["radius"])
+                y = min(max(float(r["y"]), walls[0] + a * (1. + 1e-8)), walls[1] - a * (1. + 1e-8))
+                coords = [r["x"], repr(y), r["z"]][:dim]
                 f.write(" ".join(coords + [r["radius"]]) + "\n")
         files.append(path)
     return files
@@ -149,11 +157,11 @@ def n1_slope(runs, reference):
     return sxy / sxx, sxy / math.sqrt(sxx * syy)
 
 
-def errors(runs, reference):
+def errors(runs, reference, quantities):
     """Per quantity: (bias, standard deviation) of the errors over the
     configurations; eta_r relative, the others absolute."""
     out = []
-    for column, _ in QUANTITIES:
+    for column, _ in quantities:
         e = []
         for row, ref in zip(runs, reference):
             a, b = float(row[column]), float(ref[column])
@@ -210,9 +218,12 @@ def main():
     wanted = [first + k * spacing for k in range(int(round((last - first) / spacing)) + 1)]
     steps = sorted({min(source, key=lambda r: abs(float(r["time"]) - s))["step"] for s in wanted}, key=int)
     steps = [int(s) for s in steps]
-    dim = int(parse_prm(prm_text + "\n" + prm_with("", common, "x")).get("Dimension", "2"))
+    values = parse_prm(prm_text + "\n" + prm_with("", common, "x"))
+    dim = int(values.get("Dimension", "2"))
+    lower = [float(x) for x in values.get("Domain/Lower left", "0,0,0").split(",")]
+    upper = [float(x) for x in values.get("Domain/Upper right", "1,1,1").split(",")]
     files = write_configurations(os.path.join(shared, "source", "output", "particles.csv"), steps,
-                                 args.work, dim)
+                                 args.work, dim, (lower[1], upper[1]))
     at = [("Particles/Generator/Fraction", "0"), ("Time stepping/End time", f"{args.dt:g}"),
           ("Time stepping/Time step", f"{args.dt:g}")]
 
@@ -224,9 +235,6 @@ def main():
                    os.path.join(shared, f"reference_{step}"), args.reuse or shared != args.work)
         reference.append(rows[-1])
         reference_particles.append(particles(os.path.join(shared, f"reference_{step}"), len(rows) - 1))
-    values = parse_prm(prm_text + "\n" + prm_with("", common, "x"))
-    lower = [float(x) for x in values.get("Domain/Lower left", "0,0,0").split(",")]
-    upper = [float(x) for x in values.get("Domain/Upper right", "1,1,1").split(",")]
     # Sliding walls and linear shear are periodic in x (and z in 3D).
     periods = [upper[0] - lower[0], 0.] + ([upper[2] - lower[2]] if dim == 3 else [])
 
@@ -234,12 +242,13 @@ def main():
     print(f"{len(steps)} configurations of the source run (strains {first:g} to {last:g}), one step of "
           f"{args.dt:g} each; errors against the reference at the same configuration: mean (bias) ± "
           "standard deviation over the configurations; η_r relative, N1 and Π over η_f γ̇.\n")
-    means = [statistics.mean(float(r[c]) for r in reference) for c, _ in QUANTITIES]
-    print("Reference means: " + ", ".join(f"{n} {m:.4f}" for (_, n), m in zip(QUANTITIES, means)) + "\n")
-    print("| variant | level | " + " | ".join(f"{n} error" for _, n in QUANTITIES) +
+    quantities = QUANTITIES_3D if dim == 3 else QUANTITIES
+    means = [statistics.mean(float(r[c]) for r in reference) for c, _ in quantities]
+    print("Reference means: " + ", ".join(f"{n} {m:.4f}" for (_, n), m in zip(quantities, means)) + "\n")
+    print("| variant | level | " + " | ".join(f"{n} error" for _, n in quantities) +
           " | N1 against the reference across configurations: slope (correlation)"
           f" | lubrication part of η_r | closing speed of pairs within {args.pair_gap:g} a / reference |")
-    print("|---|---|" + "---|" * (len(QUANTITIES) + 3))
+    print("|---|---|" + "---|" * (len(quantities) + 3))
     for level in levels:
         mesh = [("Mesh refinement/Initial global refinement", str(level)),
                 ("Mesh refinement/Minimum level", str(level)), ("Mesh refinement/Maximum level", str(level))]
@@ -258,17 +267,17 @@ def main():
             # The cut element solves the correction with the flow, so its
             # first solve is not the mesh alone.
             if k == 0 and "cut" not in values.get("Fluid/Model", ""):
-                e = errors(first_rows, reference)
+                e = errors(first_rows, reference, quantities)
                 print(f"| mesh alone | {level} | " + " | ".join(
                     f"{m * 100:+.1f} % ± {s * 100:.1f}" if c == "relative_viscosity" else f"{m:+.3f} ± {s:.3f}"
-                    for (c, _), (m, s) in zip(QUANTITIES, e)) +
+                    for (c, _), (m, s) in zip(quantities, e)) +
                     " | {:.2f} ({:.2f})".format(*n1_slope(first_rows, reference)) + " | 0 | " +
                     f"{closing_slope(at_start, reference_particles, periods, dim, args.pair_gap, False):.2f} |")
-            e = errors(runs, reference)
+            e = errors(runs, reference, quantities)
             lub = statistics.mean(float(r["lubrication_relative_viscosity"] or 0.) for r in runs)
             print(f"| {name} | {level} | " + " | ".join(
                 f"{m * 100:+.1f} % ± {s * 100:.1f}" if c == "relative_viscosity" else f"{m:+.3f} ± {s:.3f}"
-                for (c, _), (m, s) in zip(QUANTITIES, e)) +
+                for (c, _), (m, s) in zip(quantities, e)) +
                 " | {:.2f} ({:.2f})".format(*n1_slope(runs, reference)) + f" | {lub:.2f} | " +
                 f"{closing_slope(moved, reference_particles, periods, dim, args.pair_gap):.2f} |")
 

@@ -248,10 +248,11 @@ namespace
     // Two discs a = 0.1 held on the compressional axis of the shear, one
     // cell across the gap, level 6 (36 000 to 38 000 unknowns): FGMRES
     // took 123 and 133 iterations when one pressure value was pinned, 86
-    // and 90 with the pressure's mean fixed (doc/history/cut_element.md,
-    // "The pinned pressure"), 43 and 59 with the cut-cell blocks in the
-    // multigrid's smoother ("Cut-cell blocks in the smoother"), whose
-    // ratio to point Jacobi's count (0.50, 0.66) must stay below 0.8.
+    // and 90 with the pressure's mean fixed
+    // (doc/history/cut_element_solvers.md, "The pinned pressure"), 43 and 59
+    // with the cut-cell blocks in the multigrid's smoother ("Cut-cell blocks in
+    // the smoother"), whose ratio to point Jacobi's count (0.50, 0.66) must
+    // stay below 0.8.
     using Solver = Fidus::CutStokesInclusion<2>;
     for (const double gap : {0.5, 0.02})
       {

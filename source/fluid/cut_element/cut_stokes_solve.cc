@@ -613,7 +613,7 @@ namespace Fidus
         // 2D, 11-12 % less time per dense 2D step than the automatic
         // choice (PORD, where MUMPS is built without METIS and SCOTCH, as
         // Debian's is); in 3D PORD, against which AMD took 40 % longer
-        // (doc/history/cut_element.md, "The direct solver's ordering").
+        // (doc/history/cut_element_solvers.md, "The direct solver's ordering").
         if (auto *mumps = dynamic_cast<Amesos_Mumps *>(direct.get());
             mumps && dim == 2)
           mumps->SetICNTL(7, 0);

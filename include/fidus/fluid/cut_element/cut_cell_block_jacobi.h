@@ -26,7 +26,7 @@ namespace Fidus
    * Why: the Nitsche terms (eta gamma / h on the surface) and the ghost
    * penalties make the rows of a cut cell strongly coupled among
    * themselves; point Jacobi smooths those local modes poorly, so the
-   * V-cycle's count grew with the level (doc/history/cut_element.md,
+   * V-cycle's count grew with the level (doc/history/cut_element_solvers.md,
    * "Cut-cell blocks in the smoother"). The weights W keep the overlap
    * from stretching the top of the spectrum that Chebyshev covers. P^-1 is
    * symmetric positive definite where A is, so it serves Chebyshev and its

@@ -19,8 +19,8 @@ namespace Fidus
    * transpose of P. deal.II's SparseMatrix::mmult and Tmmult build their
    * patterns through a DynamicSparsityPattern, which was half of a 3D cut
    * element solve's time and most of its peak memory
-   * (doc/history/cut_element.md, "The multigrid's set-up"). The rows are
-   * split among the threads (MultithreadInfo::n_threads()); the result does
+   * (doc/history/cut_element_solvers.md, "The multigrid's set-up"). The rows
+   * are split among the threads (MultithreadInfo::n_threads()); the result does
    * not depend on their number.
    */
   void
