@@ -1,9 +1,9 @@
 // The closest approach of the seed paper's 3D pair with the sub-grid
 // lubrication correction, a coarse and short version of
-// doc/history/lubrication.md ("Two spheres passing in shear against
-// Batchelor & Green"). Two spheres (a = 0.05) in linear shear start where
-// Batchelor & Green's exact passage of prm/two_particles_3d.prm is at
-// t = 6 (relative position (1.096, -0.5945) x 2a, from
+// doc/history/lubrication_sheared_pair.md ("Two spheres passing in shear
+// against Batchelor & Green"). Two spheres (a = 0.05) in linear shear start
+// where Batchelor & Green's exact passage of prm/two_particles_3d.prm is at t =
+// 6 (relative position (1.096, -0.5945) x 2a, from
 // contrib/benchmarks/batchelor_green.py), and are sheared for 3 time units,
 // through the closest approach (exact: gap 7.37e-3 a, 1.89 into this run).
 // Maximum level 5 (a/h = 1.6), released shared cells with the correction

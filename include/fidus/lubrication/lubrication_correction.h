@@ -40,10 +40,10 @@ namespace Fidus::Contact
     /// Gap h_f (length) whose squeeze resistance the fluid solve shows when
     /// the ambient flow, not a force, closes a pair's gap; < 0: the same as
     /// range. The mesh resists a flow-driven approach less than a
-    /// force-driven one (doc/lubrication.md, "Two spheres held in shear"),
-    /// so the two parts of u* are corrected from different gaps: the part
-    /// driven by the external forces (set_external_forces()) from range,
-    /// the rest from flow_range.
+    /// force-driven one (doc/history/lubrication_sheared_pair.md, "Two spheres
+    /// held in shear"), so the two parts of u* are corrected from different
+    /// gaps: the part driven by the external forces (set_external_forces())
+    /// from range, the rest from flow_range.
     double flow_range = -1.;
     /// Gap h_o (length) at which the flow's resolved gap meets the true
     /// one: below it the fluid solve is taken to show, for a flow-driven
