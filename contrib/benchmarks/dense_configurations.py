@@ -241,7 +241,7 @@ def main():
     # 3. The fictitious domain at each level and variant.
     print(f"{len(steps)} configurations of the source run (strains {first:g} to {last:g}), one step of "
           f"{args.dt:g} each; errors against the reference at the same configuration: mean (bias) ± "
-          "standard deviation over the configurations; η_r relative, N1 and Π over η_f γ̇.\n")
+          "standard deviation over the configurations; η_r relative, the normal stresses and Π over η_f γ̇.\n")
     quantities = QUANTITIES_3D if dim == 3 else QUANTITIES
     means = [statistics.mean(float(r[c]) for r in reference) for c, _ in quantities]
     print("Reference means: " + ", ".join(f"{n} {m:.4f}" for (_, n), m in zip(quantities, means)) + "\n")
