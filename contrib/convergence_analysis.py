@@ -8,6 +8,9 @@ import bisect
 import csv
 import math
 import os
+import subprocess
+import sys
+import time
 
 # Two consecutive observed orders count as consistent when the larger is at
 # most this factor times the smaller ("differ by no more than 50 %").
@@ -81,6 +84,35 @@ def prm_with(prm_text, overrides, output):
         lines.append(f"set {parts[-1]} = {value}")
         lines += ["end"] * (len(parts) - 1)
     return "\n".join(lines) + "\n"
+
+
+def run_in_folder(fidus, prm_text, overrides, folder, reuse, prog, label, np_ranks=1):
+    """Run fidus on the prm with the overrides (prm_with()) in folder:
+    run.prm, stderr.txt and exit_status there, output in folder/output;
+    "<prog>: running <label>" on stderr first. With reuse, a run whose
+    exit_status is 0 is not run again. Returns the wall seconds of the
+    run, or None if it was reused; exits with one message naming the label
+    if fidus fails."""
+    done = os.path.join(folder, "exit_status")
+    if reuse and os.path.exists(done) and open(done).read().strip() == "0":
+        return None
+    os.makedirs(folder, exist_ok=True)
+    print(f"{prog}: running {label}", file=sys.stderr)
+    prm = os.path.join(folder, "run.prm")
+    with open(prm, "w") as f:
+        f.write(prm_with(prm_text, overrides, os.path.abspath(os.path.join(folder, "output"))))
+    command = [fidus, prm]
+    if np_ranks > 1:
+        command = ["mpirun", "-np", str(np_ranks)] + command
+    start = time.time()
+    with open(os.path.join(folder, "stderr.txt"), "w") as err:
+        status = subprocess.call(command, stdout=subprocess.DEVNULL, stderr=err)
+    seconds = time.time() - start
+    with open(done, "w") as f:
+        f.write(f"{status}\n")
+    if status != 0:
+        sys.exit(f"{prog}: fidus failed for {label} (exit status {status}); see {folder}/stderr.txt")
+    return seconds
 
 
 def parse_overrides(items, prog):

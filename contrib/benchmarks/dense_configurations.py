@@ -44,13 +44,12 @@ import csv
 import math
 import os
 import statistics
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "contrib"))
-from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with  # noqa: E402
+from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with, run_in_folder  # noqa: E402
 
 PROG = "dense_configurations.py"
 QUANTITIES = (("relative_viscosity", "η_r"), ("normal_stress_difference_1", "N1"),
@@ -60,25 +59,10 @@ QUANTITIES_3D = QUANTITIES[:2] + (("normal_stress_difference_2", "N2"),) + QUANT
 
 
 def run(fidus, prm_text, overrides, folder, reuse, np_ranks=1):
-    """Run fidus on the prm with the overrides in folder; the rows of its
-    statistics.csv. Exits with one message if fidus fails."""
-    output = os.path.abspath(os.path.join(folder, "output"))
-    done = os.path.join(folder, "exit_status")
-    if not (reuse and os.path.exists(done) and open(done).read().strip() == "0"):
-        os.makedirs(folder, exist_ok=True)
-        prm = os.path.join(folder, "run.prm")
-        with open(prm, "w") as f:
-            f.write(prm_with(prm_text, overrides, output))
-        command = [fidus, prm]
-        if np_ranks > 1:
-            command = ["mpirun", "-np", str(np_ranks)] + command
-        with open(os.path.join(folder, "stderr.txt"), "w") as err:
-            status = subprocess.call(command, stdout=subprocess.DEVNULL, stderr=err)
-        with open(done, "w") as f:
-            f.write(f"{status}\n")
-        if status != 0:
-            sys.exit(f"{PROG}: fidus failed in {folder} (exit status {status}); see its stderr.txt")
-    with open(os.path.join(output, "statistics.csv"), newline="") as f:
+    """Run fidus in folder (run_in_folder()); the rows of its
+    statistics.csv."""
+    run_in_folder(fidus, prm_text, overrides, folder, reuse, PROG, os.path.basename(folder), np_ranks)
+    with open(os.path.join(folder, "output", "statistics.csv"), newline="") as f:
         return list(csv.DictReader(f))
 
 
@@ -230,7 +214,6 @@ def main():
     # 2. The reference at each configuration.
     reference, reference_particles = [], []
     for step, path in zip(steps, files):
-        print(f"{PROG}: reference at step {step}", file=sys.stderr)
         rows = run(args.fidus, reference_text, common + at + [("Particles/Positions file", path)],
                    os.path.join(shared, f"reference_{step}"), args.reuse or shared != args.work)
         reference.append(rows[-1])
@@ -256,7 +239,6 @@ def main():
             runs, first_rows, moved, at_start = [], [], [], []
             for step, path in zip(steps, files):
                 folder = os.path.join(args.work, f"level_{level}_variant_{k}_{step}")
-                print(f"{PROG}: level {level}, {name}, step {step}", file=sys.stderr)
                 rows = run(args.fidus, prm_text,
                            common + correction + at + mesh + overrides + [("Particles/Positions file", path)],
                            folder, args.reuse, args.np)

@@ -19,15 +19,14 @@ import argparse
 import csv
 import os
 import statistics
-import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "contrib"))
 from convergence_analysis import (  # noqa: E402
-    QUIET_RUN, Geometry, max_trajectory_difference, parse_overrides, parse_prm, prm_with, read_particles,
-    read_text)
+    QUIET_RUN, Geometry, max_trajectory_difference, parse_overrides, parse_prm, read_particles, read_text,
+    run_in_folder)
 
 
 class Run:
@@ -75,20 +74,7 @@ def main():
     with open(args.prm) as f:
         prm_text = f.read()
     for r in runs:
-        done = os.path.join(r.folder, "exit_status")
-        if args.reuse and os.path.exists(done) and open(done).read().strip() == "0":
-            continue
-        os.makedirs(r.folder, exist_ok=True)
-        prm = os.path.join(r.folder, "run.prm")
-        with open(prm, "w") as f:
-            f.write(prm_with(prm_text, r.overrides, os.path.abspath(r.output)))
-        print(f"gap_step.py: running {r.label}", file=sys.stderr)
-        with open(os.path.join(r.folder, "stderr.txt"), "w") as err:
-            status = subprocess.call([args.fidus, prm], stdout=subprocess.DEVNULL, stderr=err)
-        with open(done, "w") as f:
-            f.write(f"{status}\n")
-        if status != 0:
-            sys.exit(f"gap_step.py: fidus failed for {r.label} (exit status {status}); see {r.folder}/stderr.txt")
+        run_in_folder(args.fidus, prm_text, r.overrides, r.folder, args.reuse, "gap_step.py", r.label)
 
     for r in runs:
         r.load()

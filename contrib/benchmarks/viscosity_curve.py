@@ -24,14 +24,12 @@ import csv
 import math
 import os
 import statistics
-import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "contrib"))
-from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with  # noqa: E402
+from convergence_analysis import QUIET_RUN, parse_overrides, parse_prm, prm_with, run_in_folder  # noqa: E402
 
 
 def mean_and_error(values, batches=5):
@@ -77,27 +75,9 @@ def main():
     rows = []
     for phi in fractions:
         folder = os.path.join(args.work, f"fraction_{phi:g}")
-        output = os.path.abspath(os.path.join(folder, "output"))
-        done = os.path.join(folder, "exit_status")
-        seconds = None
-        if not (args.reuse and os.path.exists(done) and open(done).read().strip() == "0"):
-            os.makedirs(folder, exist_ok=True)
-            prm = os.path.join(folder, "run.prm")
-            with open(prm, "w") as f:
-                f.write(prm_with(prm_text, common + [("Particles/Generator/Fraction", f"{phi:g}")], output))
-            command = [args.fidus, prm]
-            if args.np > 1:
-                command = ["mpirun", "-np", str(args.np)] + command
-            print(f"viscosity_curve.py: running fraction {phi:g}", file=sys.stderr)
-            start = time.time()
-            with open(os.path.join(folder, "stderr.txt"), "w") as err:
-                status = subprocess.call(command, stdout=subprocess.DEVNULL, stderr=err)
-            seconds = time.time() - start
-            with open(done, "w") as f:
-                f.write(f"{status}\n")
-            if status != 0:
-                sys.exit(f"viscosity_curve.py: fidus failed at fraction {phi:g} (exit status {status}); "
-                         f"see {folder}/stderr.txt")
+        output = os.path.join(folder, "output")
+        seconds = run_in_folder(args.fidus, prm_text, common + [("Particles/Generator/Fraction", f"{phi:g}")],
+                                folder, args.reuse, "viscosity_curve.py", f"fraction {phi:g}", args.np)
         with open(os.path.join(output, "statistics.csv"), newline="") as f:
             stats = list(csv.DictReader(f))
         with open(os.path.join(output, "particles.csv"), newline="") as f:
