@@ -203,6 +203,38 @@ namespace Fidus
                        "'exact rigid inclusion' scene; allowed: 'fictitious "
                        "domain'");
 
+    // Free-draining particles have no flow to solve the bonds with.
+    if (fluid.model == FluidModelType::undisturbed_shear &&
+        lubrication.coupling == LubricationParameters::Coupling::with_the_flow)
+      throw InputError("entry 'Fluid/Lubrication coupling' has the value "
+                       "'with the flow' with 'Fluid/Model = undisturbed "
+                       "shear', which solves no flow; allowed: auto, after "
+                       "the solve");
+
+    // Solved with the flow, the bonds act at the gaps of the solve.
+    if (fluid.model == FluidModelType::fictitious_domain &&
+        lubrication.coupling ==
+          LubricationParameters::Coupling::with_the_flow &&
+        lubrication.gap_in_time != Contact::GapInTime::start)
+      throw InputError("entry 'Fluid/Lubrication gap in time' is not 'start' "
+                       "with 'Fluid/Lubrication coupling = with the flow', "
+                       "which solves the bonds with the flow at the gaps of "
+                       "each solve; allowed: start");
+    // Only the fictitious domain iterates the bonds with its solve.
+    if (lubrication.coupling_tolerance != 1e-3 &&
+        !(fluid.model == FluidModelType::fictitious_domain &&
+          lubrication.coupling ==
+            LubricationParameters::Coupling::with_the_flow))
+      {
+        std::ostringstream m;
+        m << "entry 'Fluid/Lubrication coupling tolerance' has the value "
+          << lubrication.coupling_tolerance
+          << ", which only 'Fluid/Model = fictitious domain' with "
+             "'Fluid/Lubrication coupling = with the flow' uses; allowed: "
+             "the default 1e-3 otherwise";
+        throw InputError(m.str());
+      }
+
     check_inside_box(*this);
     check_no_overlap(*this);
 

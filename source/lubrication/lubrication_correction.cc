@@ -482,6 +482,23 @@ namespace Fidus::Contact
 
 
 
+  std::array<double, 12>
+  LubricationCorrection::resolved_loads(const LubricationBond        &b,
+                                        const std::array<double, 12> &v) const
+  {
+    Local f = normal_loads(b, b.r_resolved_force, v);
+    if (settings.tangential)
+      {
+        const Local t =
+          loads_of_sliding(b, b.t_resolved, settings.dimension, v, false);
+        for (unsigned int k = 0; k < 12; ++k)
+          f[k] += t[k];
+      }
+    return f;
+  }
+
+
+
   LubricationStatistics
   LubricationCorrection::measure(const std::vector<Vec3> &u,
                                  const std::vector<Vec3> &w)

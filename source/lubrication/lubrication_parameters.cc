@@ -28,6 +28,30 @@ namespace Fidus
       "where close pairs are no longer held as one rigid doublet. false "
       "keeps the seed's model.");
     prm.declare_entry(
+      "Lubrication coupling",
+      "auto",
+      Patterns::Selection("auto|after the solve|with the flow"),
+      "With 'Lubrication correction', how the sub-grid resistance meets "
+      "the fluid solve. after the solve: the solve's rigid velocities are "
+      "corrected afterwards, with each particle's isolated drag standing "
+      "for the fluid around it (one solve per step). with the flow: the "
+      "bonds' forces and torques act on the particles inside the fluid "
+      "solve, iterated with it until the rigid velocities agree to "
+      "'Lubrication coupling tolerance' (a few solves per step), so that "
+      "the flow around a close pair is that of the pair's lubricated "
+      "motion. auto: with the flow for the cut finite element (its only "
+      "way), after the solve for the fictitious domain. Measured on dense "
+      "suspensions in doc/theory/lubrication.md, 'In a dense suspension'.");
+    prm.declare_entry(
+      "Lubrication coupling tolerance",
+      "1e-3",
+      Patterns::Double(0.),
+      "With 'Lubrication coupling = with the flow' on the fictitious "
+      "domain: the iteration of the bonds with the fluid solve stops when "
+      "no particle's rigid velocity (or angular velocity times its "
+      "radius) changes by more than this fraction of the largest rigid "
+      "speed, > 0.");
+    prm.declare_entry(
       "Lubrication tangential terms",
       "true",
       Patterns::Bool(),
@@ -192,6 +216,11 @@ namespace Fidus
       "Fluid/Lubrication flow edge",
       dim == 3 && flow_range_auto ? auto_flow_edge_3d : flow_range,
       "auto or one gap in finest cell sizes > 0");
+    const std::string coupling_text = prm.get("Lubrication coupling");
+    coupling = coupling_text == "after the solve" ? Coupling::after_the_solve :
+               coupling_text == "with the flow"   ? Coupling::with_the_flow :
+                                                    Coupling::automatic;
+    coupling_tolerance    = prm.get_double("Lubrication coupling tolerance");
     tangential            = prm.get_bool("Lubrication tangential terms");
     const std::string gap = prm.get("Lubrication gap in time");
     gap_in_time           = gap == "step mean" ? Contact::GapInTime::step_mean :
@@ -219,6 +248,17 @@ namespace Fidus
       throw InputError("entry 'Fluid/Lubrication gap in time' is set "
                        "without 'Fluid/Lubrication correction = true', which "
                        "it belongs to; allowed: start, or the correction on");
+    if (!enabled && coupling != Coupling::automatic)
+      throw InputError("entry 'Fluid/Lubrication coupling' is set without "
+                       "'Fluid/Lubrication correction = true', which it "
+                       "belongs to; allowed: auto, or the correction on");
+    if (enabled && !(coupling_tolerance > 0.))
+      {
+        std::ostringstream m;
+        m << "entry 'Fluid/Lubrication coupling tolerance' has the value "
+          << coupling_tolerance << "; allowed: a number > 0";
+        throw InputError(m.str());
+      }
     require_gap("Lubrication range", range);
     require_gap("Lubrication range", wall_range);
     require_gap("Lubrication flow range", flow_range);

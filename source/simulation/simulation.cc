@@ -122,7 +122,7 @@ namespace Fidus
         dim,
         box.walls,
         box.periods);
-    if (lubrication && fluid->resolved_gap_fraction() > 0.)
+    if (lubrication && fluid->solves_subgrid_lubrication())
       {
         fluid->set_subgrid_lubrication(lubrication.get());
         lubrication_in_fluid = true;

@@ -16,14 +16,16 @@
 namespace FidusTest
 {
   /// Runs one step of @p dt with discs of radius @p a at @p positions,
-  /// pushed by @p forces (per unit length), at maximum level @p level;
-  /// the output goes to run_output/.
+  /// pushed by @p forces (per unit length), at maximum level @p level,
+  /// with the extra Fluid entries @p fluid_entries ("set Key = value"
+  /// lines); the output goes to run_output/.
   inline void
   run_pushed_discs(const double                              a,
                    const double                              dt,
                    const unsigned int                        level,
                    const std::vector<std::array<double, 2>> &positions,
-                   const std::vector<std::array<double, 2>> &forces)
+                   const std::vector<std::array<double, 2>> &forces,
+                   const std::string                        &fluid_entries = "")
   {
     const auto list = [](const std::vector<std::array<double, 2>> &v) {
       std::ostringstream s;
@@ -45,6 +47,7 @@ namespace FidusTest
       << "  set Rigid velocity tolerance = 1e-5\n"
       << "  set Maximum Uzawa iterations = 30\n"
       << "  set Lubrication correction = true\n"
+      << fluid_entries
       << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\n"
       << "end\n"
       << "subsection Particles\n  set Radius = " << a << "\n"

@@ -138,7 +138,16 @@ namespace Fidus
       return 0.;
     }
 
-    /// For a model with resolved_gap_fraction() > 0: the sub-grid
+    /// Whether the sub-grid lubrication is solved with this model's flow
+    /// (set_subgrid_lubrication()) rather than after it: a model that
+    /// resolves every gap to a fraction of the radii does so always, the
+    /// fictitious domain with `Fluid/Lubrication coupling = with the flow`.
+    virtual bool
+    solves_subgrid_lubrication() const
+    {
+      return resolved_gap_fraction() > 0.;
+    }
+    /// For a model that solves_subgrid_lubrication(): the sub-grid
     /// lubrication whose bonds (LubricationCorrection::find_bonds()) every
     /// later solve adds to its own system, so that the fluid and the
     /// sub-grid resistance are solved together. The caller keeps

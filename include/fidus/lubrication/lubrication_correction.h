@@ -373,6 +373,17 @@ namespace Fidus::Contact
                   bool                          wall_motion) const;
 
     /**
+     * The loads (F_i, T_i, F_j, T_j) of the resistance that the fluid solve
+     * itself shows bond @p b in its response to a force (the normal squeeze
+     * of r_resolved_force, and the tangential terms of t_resolved with
+     * LubricationSettings::tangential) at the generalised velocities @p v,
+     * walls at rest: linear in @p v. The model of the fluid's resistance
+     * in Contact::LubricationCoupling.
+     */
+    std::array<double, 12>
+    resolved_loads(const LubricationBond        &b,
+                   const std::array<double, 12> &v) const;
+    /**
      * Record on the bonds of the last find_bonds() the forces of the
      * velocities @p u and angular velocities @p w that the fluid model
      * solved with them (for the stress and the statistics); the

@@ -51,6 +51,24 @@ namespace Fidus
 
     /// Fluid/Lubrication correction.
     bool enabled = false;
+    /// How the correction meets the fluid solve (Fluid/Lubrication
+    /// coupling).
+    enum class Coupling
+    {
+      /// the fluid model's own way: with the flow for the cut finite
+      /// element, after the solve for the fictitious domain
+      automatic,
+      /// the rigid velocities of the solve corrected afterwards, with the
+      /// particles' isolated drags standing for the fluid
+      after_the_solve,
+      /// the bonds' loads acting in the fluid solve, solved together
+      with_the_flow
+    };
+    Coupling coupling = Coupling::automatic;
+    /// Fluid/Lubrication coupling tolerance: the coupled iteration stops
+    /// when no rigid velocity changes by more than this fraction of the
+    /// largest one.
+    double coupling_tolerance = 1e-3;
     /// Ranges of particle pairs and of particle-wall gaps below which the
     /// squeeze is corrected (Fluid/Lubrication range).
     double range      = 2.;

@@ -197,6 +197,13 @@ namespace Fidus
     if (!scene.lubrication.enabled)
       return;
     // The cut element solves the bonds with the flow at the start's gaps.
+    if (scene.lubrication.coupling ==
+        LubricationParameters::Coupling::after_the_solve)
+      throw InputError("entry 'Fluid/Lubrication coupling' has the value "
+                       "'after the solve' with " +
+                       model +
+                       ", which solves the correction's bonds together with "
+                       "the flow; allowed: auto, with the flow");
     if (scene.lubrication.gap_in_time != Contact::GapInTime::start)
       throw InputError("entry 'Fluid/Lubrication gap in time' is not 'start' "
                        "with " +

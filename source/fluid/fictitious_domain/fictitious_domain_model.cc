@@ -159,9 +159,15 @@ namespace Fidus
     solid
       .reinit(X, solid_radii, box.lo, box.hi, box.is_periodic, box.query_reach);
     const bool remeshed = refine_mesh_if_particles_moved(X);
-    Statistics stats    = solve_stokes(shear_rate, label);
-    stats.remeshed      = remeshed;
-    extract_rigid_motion(U, W);
+    Statistics stats;
+    if (subgrid)
+      stats = solve_with_subgrid_lubrication(X, shear_rate, label, U, W);
+    else
+      {
+        stats = solve_stokes(shear_rate, label, external_force.get());
+        extract_rigid_motion(U, W);
+      }
+    stats.remeshed = remeshed;
     if (exact && !exact_reported)
       report_exact_solution_errors(U, W);
     return stats;
@@ -211,17 +217,21 @@ namespace Fidus
 
   template <int dim>
   typename FictitiousDomainModel<dim>::Statistics
-  FictitiousDomainModel<dim>::solve_stokes(const double      shear_rate,
-                                           const SolveLabel &label)
+  FictitiousDomainModel<dim>::solve_stokes(const double         shear_rate,
+                                           const SolveLabel    &label,
+                                           const Function<dim> *body_force,
+                                           const Function<dim> *extra_force)
   {
     TimerOutput::Scope scope(timer, "fluid");
     boundary.set_shear_rate(shear_rate);
     solved_shear_rate = shear_rate;
     const typename StokesSolver<dim>::Statistics s =
-      solver->solve(solid,
-                    exact ? static_cast<const Function<dim> &>(*exact) :
-                            boundary,
-                    external_force.get());
+      extra_force ?
+        solver->resolve(solid, *extra_force) :
+        solver->solve(solid,
+                      exact ? static_cast<const Function<dim> &>(*exact) :
+                              boundary,
+                      body_force);
     Statistics stats;
     stats.n_cells                    = tria->n_global_active_cells();
     stats.n_dofs                     = solver->n_dofs();
@@ -327,6 +337,35 @@ namespace Fidus
   FictitiousDomainModel<dim>::resolves_gap_flow() const
   {
     return true;
+  }
+
+
+
+  template <int dim>
+  bool
+  FictitiousDomainModel<dim>::solves_subgrid_lubrication() const
+  {
+    return prm.lubrication.enabled &&
+           prm.lubrication.coupling ==
+             LubricationParameters::Coupling::with_the_flow;
+  }
+
+
+
+  template <int dim>
+  void
+  FictitiousDomainModel<dim>::set_subgrid_lubrication(
+    Contact::LubricationCorrection *correction)
+  {
+    subgrid = correction;
+    load_force.assign(n, Vec3{{0., 0., 0.}});
+    load_torque.assign(n, Vec3{{0., 0., 0.}});
+    load_density = std::make_unique<ParticleForceDensity<dim>>(solid,
+                                                               load_force,
+                                                               load_torque);
+    // The coupled solves differ from a step's first solve in these loads
+    // only, so they keep its system and add them to its right-hand side.
+    solver->keep_right_hand_side(true);
   }
 
 

@@ -599,6 +599,51 @@ namespace Fidus
 
 
   template <int dim>
+  void
+  StokesSolver<dim>::add_body_force_rhs(const SolidIndicator<dim> &solid,
+                                        const Function<dim>       &body_force)
+  {
+    // Only the velocity rows of the cells the force reaches; a linear
+    // load, so the constraints only condense it (no inhomogeneity).
+    const FEValuesExtractors::Vector velocities(0);
+    CellAssembly                     c(fe, quadrature);
+    FEValues<dim>                   &fe_values = c.fe_values;
+    std::vector<unsigned int>        cands;
+    for (const auto &cell : cells)
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        // The loads live in the particles (ParticleForceDensity).
+        solid.candidates(cell->center(), 0.5 * cell->diameter(), cands);
+        if (cands.empty())
+          continue;
+        fe_values.reinit(cell);
+        cell->get_dof_indices(c.dofs);
+        c.cell_rhs  = 0;
+        bool loaded = false;
+        for (unsigned int q = 0; q < c.n_q; ++q)
+          {
+            body_force.vector_value(fe_values.quadrature_point(q), c.force);
+            if (c.force.l2_norm() == 0.)
+              continue;
+            loaded           = true;
+            const double JxW = fe_values.JxW(q);
+            for (const unsigned int k : c.u_dofs)
+              {
+                const unsigned int comp = fe.system_to_component_index(k).first;
+                c.cell_rhs(k) +=
+                  c.force[comp] * fe_values[velocities].value(k, q)[comp] * JxW;
+              }
+          }
+        if (loaded)
+          constraints.distribute_local_to_global(c.cell_rhs, c.dofs, base_rhs);
+      }
+    base_rhs.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
   bool
   StokesSolver<dim>::velocity_block_assembled() const
   {

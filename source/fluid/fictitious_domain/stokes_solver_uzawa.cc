@@ -312,8 +312,57 @@ namespace Fidus
     linear_solver->setup(solid, fluid_viscosity);
     stats.setup_seconds = timer.wall_time();
 
-    timer.restart();
-    if (!multiplier_valid || !settings.reuse_multiplier)
+    if (keep_rhs_for_resolve)
+      saved_base_rhs = base_rhs;
+    run_uzawa_loop(solid, !settings.reuse_multiplier, stats);
+    if (settings.verbose &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "    Stokes: assembly " << stats.assemble_seconds
+                << " s (of which constraints " << constraint_seconds
+                << " s), preconditioner set-up " << stats.setup_seconds
+                << " s, Uzawa/FGMRES " << stats.solve_seconds
+                << " s (of which passes over the solid "
+                << stats.solid_pass_seconds << " s), DoFs " << n_dofs()
+                << std::endl;
+    return stats;
+  }
+
+
+  template <int dim>
+  typename StokesSolver<dim>::Statistics
+  StokesSolver<dim>::resolve(const SolidIndicator<dim> &solid,
+                             const Function<dim>       &extra_force)
+  {
+    Assert(keep_rhs_for_resolve && saved_base_rhs.size() == base_rhs.size(),
+           ExcMessage("resolve() needs keep_right_hand_side() before the "
+                      "solve() it repeats"));
+    Statistics stats;
+    Timer      timer;
+    base_rhs = saved_base_rhs;
+    add_body_force_rhs(solid, extra_force);
+    stats.assemble_seconds = timer.wall_time();
+    stats.shared_cells     = n_shared_cells;
+    // The same solid: the last multiplier is a warm start even where
+    // Reuse multiplier is off (that guards against a moved solid).
+    run_uzawa_loop(solid, false, stats);
+    if (settings.verbose &&
+        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "    Stokes again with new loads: right-hand side "
+                << stats.assemble_seconds << " s, Uzawa/FGMRES "
+                << stats.solve_seconds << " s" << std::endl;
+    return stats;
+  }
+
+
+
+  template <int dim>
+  void
+  StokesSolver<dim>::run_uzawa_loop(const SolidIndicator<dim> &solid,
+                                    const bool                 start_from_zero,
+                                    Statistics                &stats)
+  {
+    Timer timer;
+    if (!multiplier_valid || start_from_zero)
       {
         distributed_multiplier = 0;
         multiplier             = distributed_multiplier;
@@ -387,16 +436,6 @@ namespace Fidus
     distributed_solution.block(1).add(-mean);
     solution            = distributed_solution;
     stats.solve_seconds = timer.wall_time();
-    if (settings.verbose &&
-        Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      std::cout << "    Stokes: assembly " << stats.assemble_seconds
-                << " s (of which constraints " << constraint_seconds
-                << " s), preconditioner set-up " << stats.setup_seconds
-                << " s, Uzawa/FGMRES " << stats.solve_seconds
-                << " s (of which passes over the solid "
-                << stats.solid_pass_seconds << " s), DoFs " << n_dofs()
-                << std::endl;
-    return stats;
   }
 
   // The class is instantiated in stokes_solver.cc; here only the members
@@ -411,4 +450,16 @@ namespace Fidus
                          const Function<3> &,
                          const Function<3> *,
                          const Function<3> *);
+  template typename StokesSolver<2>::Statistics
+  StokesSolver<2>::resolve(const SolidIndicator<2> &, const Function<2> &);
+  template typename StokesSolver<3>::Statistics
+  StokesSolver<3>::resolve(const SolidIndicator<3> &, const Function<3> &);
+  template void
+  StokesSolver<2>::run_uzawa_loop(const SolidIndicator<2> &,
+                                  bool,
+                                  StokesSolver<2>::Statistics &);
+  template void
+  StokesSolver<3>::run_uzawa_loop(const SolidIndicator<3> &,
+                                  bool,
+                                  StokesSolver<3>::Statistics &);
 } // namespace Fidus

@@ -11,6 +11,7 @@
 #include <fidus/fluid/fictitious_domain/stokes_solver.h>
 #include <fidus/fluid/fluid_model.h>
 #include <fidus/io/field_output.h>
+#include <fidus/lubrication/lubrication_correction.h>
 #include <fidus/mesh/mesh_refiner.h>
 #include <fidus/simulation/box_geometry.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
@@ -66,6 +67,14 @@ namespace Fidus
     bool
     resolves_gap_flow() const override;
 
+    /// True with `Fluid/Lubrication coupling = with the flow`.
+    bool
+    solves_subgrid_lubrication() const override;
+
+    void
+    set_subgrid_lubrication(
+      Contact::LubricationCorrection *correction) override;
+
     void
     open_field_output(const std::string  &directory,
                       const unsigned int *resumed_step) override;
@@ -87,9 +96,28 @@ namespace Fidus
     /// the last remesh; true when the unknowns changed.
     bool
     refine_mesh_if_particles_moved(const std::vector<Vec3> &X);
-    /// The Uzawa loop's statistics; a loop that stopped short is a warning.
+    /// The Uzawa loop's statistics with the body force @p body_force (null:
+    /// none); a loop that stopped short is a warning. With @p extra_force:
+    /// the last solve again with that body force added to its loads
+    /// (StokesSolver::resolve()), @p body_force unused.
     Statistics
-    solve_stokes(double shear_rate, const SolveLabel &label);
+    solve_stokes(double               shear_rate,
+                 const SolveLabel    &label,
+                 const Function<dim> *body_force,
+                 const Function<dim> *extra_force = nullptr);
+    /**
+     * The solve with the sub-grid lubrication's bonds at @p X acting on the
+     * particles as forces and torques (Contact::LubricationCoupling),
+     * iterated with Anderson mixing until the rigid velocities @p U, @p W
+     * agree to `Fluid/Lubrication coupling tolerance`. Returns the last
+     * solve's statistics with the iterations of all of them summed.
+     */
+    Statistics
+    solve_with_subgrid_lubrication(const std::vector<Vec3> &X,
+                                   double                   shear_rate,
+                                   const SolveLabel        &label,
+                                   std::vector<Vec3>       &U,
+                                   std::vector<Vec3>       &W);
     /// The rigid velocity (U, omega) of each particle from the velocity.
     void
     extract_rigid_motion(std::vector<Vec3> &U, std::vector<Vec3> &W);
@@ -118,6 +146,12 @@ namespace Fidus
     /// particles).
     std::unique_ptr<ParticleForceDensity<dim>> external_force;
     std::unique_ptr<FieldOutput<dim>>          field_output;
+    /// The sub-grid lubrication solved with the flow (else null), and the
+    /// forces and torques of its bonds that load_density spreads over the
+    /// particles.
+    Contact::LubricationCorrection            *subgrid = nullptr;
+    std::vector<Vec3>                          load_force, load_torque;
+    std::unique_ptr<ParticleForceDensity<dim>> load_density;
     BoundaryVelocity<dim>                      boundary;
     SolidIndicator<dim>                        solid;
 

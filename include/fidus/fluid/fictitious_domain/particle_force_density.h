@@ -17,6 +17,11 @@ namespace Fidus
    * move as one body, so the particle feels the net force F_i up to the
    * cut-cell quadrature of its volume; the fluid carries it to the walls.
    *
+   * With torques, particle i also carries the density T_i x r / J_i (r
+   * from the centre of the ball, J_i = int |r|^2 (2D: pi a^4 / 2) or
+   * 2/3 int |r|^2 (3D: 8 pi a^5 / 15) over the ball), whose moment about
+   * the centre is T_i and whose net force is zero (2D: T_i = (0, 0, tau)).
+   *
    * Components 0..dim-1 are the force density, component dim (the
    * pressure's) is zero, as StokesSolver::solve() expects of a body force.
    */
@@ -29,12 +34,20 @@ namespace Fidus
     ParticleForceDensity(const SolidIndicator<dim>                &solid,
                          const std::vector<std::array<double, 3>> &forces);
 
+    /// Forces and torques, one of each per particle (both must outlive this
+    /// object; their values may change between solves).
+    ParticleForceDensity(const SolidIndicator<dim>                &solid,
+                         const std::vector<std::array<double, 3>> &forces,
+                         const std::vector<std::array<double, 3>> &torques);
+
     void
     vector_value(const Point<dim> &x, Vector<double> &values) const override;
 
   private:
     const SolidIndicator<dim>                &solid;
     const std::vector<std::array<double, 3>> &forces;
+    /// Null: no torques.
+    const std::vector<std::array<double, 3>> *torques = nullptr;
   };
 } // namespace Fidus
 

@@ -138,6 +138,26 @@ namespace Fidus
           const Function<dim>       *fluid_viscosity = nullptr);
 
     /**
+     * Solve again with the system of the last solve() (the same solid,
+     * boundary values and preconditioner: for the 2D direct solver its
+     * factorisation) and its right-hand side plus the body force
+     * @p extra_force (dim+1 components, the pressure's zero), from the last
+     * multiplier: for solves that differ in their loads only (the
+     * sub-grid lubrication solved with the flow). Needs
+     * keep_right_hand_side(true) before that solve().
+     */
+    Statistics
+    resolve(const SolidIndicator<dim> &solid, const Function<dim> &extra_force);
+
+    /// Keep a copy of each solve()'s right-hand side for resolve() (one
+    /// vector of the unknowns' size).
+    void
+    keep_right_hand_side(const bool keep)
+    {
+      keep_rhs_for_resolve = keep;
+    }
+
+    /**
      * Errors of the current solution against @p exact (dim+1 components):
      * L2 and H1-seminorm of u and L2 of p (both pressures with zero mean),
      * integrated on the fluid part only when @p fluid_only is set.
@@ -298,6 +318,18 @@ namespace Fidus
     assemble_system(const SolidIndicator<dim> &solid,
                     const Function<dim>       *body_force,
                     const Function<dim>       *fluid_viscosity);
+    /// Add the load of @p body_force, which vanishes outside the particles
+    /// of @p solid, to base_rhs (the matrix unchanged).
+    void
+    add_body_force_rhs(const SolidIndicator<dim> &solid,
+                       const Function<dim>       &body_force);
+    /// The Uzawa loop on the assembled system and its set-up
+    /// preconditioner, from a zero multiplier if @p start_from_zero (or no
+    /// valid one), else from the last; fills the loop's part of @p stats.
+    void
+    run_uzawa_loop(const SolidIndicator<dim> &solid,
+                   bool                       start_from_zero,
+                   Statistics                &stats);
     void
     assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
     /// The strain the current solution leaves in the solid
@@ -429,6 +461,9 @@ namespace Fidus
     TrilinosWrappers::MPI::BlockVector  distributed_multiplier, multiplier;
     TrilinosWrappers::MPI::BlockVector  solid_mask;
     bool                                multiplier_valid = false;
+    /// See keep_right_hand_side(): base_rhs as solve() assembled it.
+    bool                               keep_rhs_for_resolve = false;
+    TrilinosWrappers::MPI::BlockVector saved_base_rhs;
     /// Meshes on which the geometric multigrid could not be built and the
     /// AMG stood in.
     unsigned int multigrid_fallbacks = 0;
