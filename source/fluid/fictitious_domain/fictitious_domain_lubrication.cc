@@ -18,7 +18,7 @@ namespace Fidus
 
   namespace
   {
-    /// At most this many solves with the bonds' loads per time step.
+    /// At most this many solves with the bonds' loads per solve of a step.
     constexpr unsigned int max_coupling_solves = 30;
     /// Earlier iterates that the Anderson mixing combines with the newest.
     constexpr unsigned int coupling_mixing_depth = 5;
