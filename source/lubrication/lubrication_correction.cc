@@ -1,3 +1,5 @@
+#include "bond_algebra.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,13 +11,15 @@
 
 namespace Fidus::Contact
 {
+  using BondAlgebra::gather;
+  using BondAlgebra::is_wall;
+  using BondAlgebra::Local;
+  using BondAlgebra::scatter_add;
+
   namespace
   {
     constexpr double pi = 3.14159265358979323846;
 
-    /// Per bond, the generalised velocities or loads of its two particles:
-    /// U_i, w_i, U_j, w_j (the last six unused for a wall).
-    using Local = std::array<double, 12>;
 
     Vec3
     part(const Local &l, const unsigned int k)
@@ -28,41 +32,6 @@ namespace Fidus::Contact
     {
       for (unsigned int d = 0; d < 3; ++d)
         l[3 * k + d] += s * v[d];
-    }
-
-    bool
-    is_wall(const LubricationBond &b)
-    {
-      return b.j == LubricationBond::no_particle;
-    }
-
-    /// The bond's generalised velocities from the global vector x (six
-    /// values per particle).
-    Local
-    gather(const LubricationBond &b, const std::vector<double> &x)
-    {
-      Local l{};
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          l[k] = x[6 * b.i + k];
-          if (!is_wall(b))
-            l[6 + k] = x[6 * b.j + k];
-        }
-      return l;
-    }
-
-    void
-    scatter_add(const LubricationBond &b,
-                const Local           &l,
-                const double           s,
-                std::vector<double>   &y)
-    {
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          y[6 * b.i + k] += s * l[k];
-          if (!is_wall(b))
-            y[6 * b.j + k] += s * l[6 + k];
-        }
     }
 
     /// n.(U_i - U_j) of a bond; a wall does not move normally.
@@ -340,7 +309,7 @@ namespace Fidus::Contact
                                LubricationStatistics     &stat) const
   {
     const std::size_t   n = zeta.size();
-    std::vector<double> ax, r(6 * n), z(6 * n), p(6 * n), diag(6 * n);
+    std::vector<double> diag(6 * n);
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
         {
@@ -362,46 +331,20 @@ namespace Fidus::Contact
             diag[6 * (k < 6 ? b.i : b.j) + k % 6] -= f[k] + t;
           }
       }
-    apply(zeta, zeta_rot, resistance, x, ax);
-    double rhs_norm2 = 0., rz = 0., r_norm2 = 0.;
-    for (std::size_t k = 0; k < 6 * n; ++k)
-      {
-        r[k] = rhs[k] - ax[k];
-        z[k] = r[k] / diag[k];
-        p[k] = z[k];
-        rhs_norm2 += rhs[k] * rhs[k];
-        rz += r[k] * z[k];
-        r_norm2 += r[k] * r[k];
-      }
-    const double goal2 = settings.tolerance * settings.tolerance * rhs_norm2;
-    unsigned int it    = 0;
-    while (r_norm2 > goal2 && it < settings.max_iterations)
-      {
-        apply(zeta, zeta_rot, resistance, p, ax);
-        double pap = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          pap += p[k] * ax[k];
-        const double alpha  = rz / pap;
-        double       rz_new = 0.;
-        r_norm2             = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          {
-            x[k] += alpha * p[k];
-            r[k] -= alpha * ax[k];
-            z[k] = r[k] / diag[k];
-            rz_new += r[k] * z[k];
-            r_norm2 += r[k] * r[k];
-          }
-        const double beta = rz_new / rz;
-        rz                = rz_new;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          p[k] = z[k] + beta * p[k];
-        ++it;
-      }
-    stat.iterations = it;
-    stat.residual =
-      rhs_norm2 > 0. ? std::sqrt(r_norm2 / rhs_norm2) : std::sqrt(r_norm2);
-    stat.converged = r_norm2 <= goal2;
+    const BondAlgebra::CgResult cg = BondAlgebra::jacobi_cg(
+      [&](const std::vector<double> &v, std::vector<double> &y) {
+        apply(zeta, zeta_rot, resistance, v, y);
+      },
+      diag,
+      rhs,
+      settings.tolerance,
+      settings.max_iterations,
+      x);
+    stat.iterations = cg.iterations;
+    stat.residual   = cg.rhs2 > 0. ? std::sqrt(cg.residual2 / cg.rhs2) :
+                                     std::sqrt(cg.residual2);
+    stat.converged =
+      cg.residual2 <= settings.tolerance * settings.tolerance * cg.rhs2;
   }
 
 

@@ -1,3 +1,5 @@
+#include "bond_algebra.h"
+
 #include <cmath>
 #include <fidus/contact/contact_error.h>
 #include <fidus/lubrication/lubrication_coupling.h>
@@ -5,30 +7,10 @@
 
 namespace Fidus::Contact
 {
-  namespace
-  {
-    using Local = std::array<double, 12>;
-
-    bool
-    is_wall(const LubricationBond &b)
-    {
-      return b.j == LubricationBond::no_particle;
-    }
-
-    /// The bond's generalised velocities (U_i, w_i, U_j, w_j) from x.
-    Local
-    gather(const LubricationBond &b, const std::vector<double> &x)
-    {
-      Local l{};
-      for (unsigned int k = 0; k < 6; ++k)
-        {
-          l[k] = x[6 * b.i + k];
-          if (!is_wall(b))
-            l[6 + k] = x[6 * b.j + k];
-        }
-      return l;
-    }
-  } // namespace
+  using BondAlgebra::gather;
+  using BondAlgebra::is_wall;
+  using BondAlgebra::Local;
+  using BondAlgebra::scatter_add;
 
 
 
@@ -108,14 +90,8 @@ namespace Fidus::Contact
     for (const LubricationBond &b : correction.bonds())
       {
         const Local v = gather(b, x);
-        const Local f = correction.subgrid_loads(b, v, false);
-        const Local g = correction.resolved_loads(b, v);
-        for (unsigned int k = 0; k < 6; ++k)
-          {
-            y[6 * b.i + k] -= f[k] + g[k];
-            if (!is_wall(b))
-              y[6 * b.j + k] -= f[6 + k] + g[6 + k];
-          }
+        scatter_add(b, correction.subgrid_loads(b, v, false), -1., y);
+        scatter_add(b, correction.resolved_loads(b, v), -1., y);
       }
   }
 
@@ -126,8 +102,7 @@ namespace Fidus::Contact
                             std::vector<double>       &s) const
   {
     const std::size_t   n = zeta.size();
-    std::vector<double> rhs(6 * n), res(6 * n), z(6 * n), p(6 * n), ap;
-    double              rhs2 = 0.;
+    std::vector<double> rhs(6 * n);
     for (std::size_t i = 0; i < n; ++i)
       for (unsigned int d = 0; d < 3; ++d)
         {
@@ -135,58 +110,23 @@ namespace Fidus::Contact
           rhs[6 * i + 3 + d] = zeta_rot[i] * r[6 * i + 3 + d];
         }
     for (const LubricationBond &b : correction.bonds())
-      {
-        const Local g = correction.resolved_loads(b, gather(b, r));
-        for (unsigned int k = 0; k < 6; ++k)
-          {
-            rhs[6 * b.i + k] -= g[k];
-            if (!is_wall(b))
-              rhs[6 * b.j + k] -= g[6 + k];
-          }
-      }
+      scatter_add(b, correction.resolved_loads(b, gather(b, r)), -1., rhs);
     s.assign(6 * n, 0.);
-    double rz = 0.;
-    for (std::size_t k = 0; k < 6 * n; ++k)
-      {
-        res[k] = rhs[k];
-        z[k]   = res[k] / diagonal[k];
-        p[k]   = z[k];
-        rz += res[k] * z[k];
-        rhs2 += rhs[k] * rhs[k];
-      }
-    const LubricationSettings &settings = correction.get_settings();
-    const double goal2 = settings.tolerance * settings.tolerance * rhs2;
-    double       res2  = rhs2;
-    unsigned int it    = 0;
-    while (res2 > goal2 && it < settings.max_iterations)
-      {
-        apply(p, ap);
-        double pap = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          pap += p[k] * ap[k];
-        const double alpha  = rz / pap;
-        double       rz_new = 0.;
-        res2                = 0.;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          {
-            s[k] += alpha * p[k];
-            res[k] -= alpha * ap[k];
-            z[k] = res[k] / diagonal[k];
-            rz_new += res[k] * z[k];
-            res2 += res[k] * res[k];
-          }
-        const double beta = rz_new / rz;
-        rz                = rz_new;
-        for (std::size_t k = 0; k < 6 * n; ++k)
-          p[k] = z[k] + beta * p[k];
-        ++it;
-      }
-    if (!(res2 <= goal2))
+    const LubricationSettings  &settings = correction.get_settings();
+    const BondAlgebra::CgResult cg =
+      BondAlgebra::jacobi_cg([this](const std::vector<double> &v,
+                                    std::vector<double> &y) { apply(v, y); },
+                             diagonal,
+                             rhs,
+                             settings.tolerance,
+                             settings.max_iterations,
+                             s);
+    if (!(cg.residual2 <= settings.tolerance * settings.tolerance * cg.rhs2))
       throw ContactError(
         "lubrication coupling: the conjugate gradients of a step did not "
         "converge in " +
-        std::to_string(it) + " iterations (relative residual " +
-        std::to_string(std::sqrt(res2 / rhs2)) + ")");
-    return it;
+        std::to_string(cg.iterations) + " iterations (relative residual " +
+        std::to_string(std::sqrt(cg.residual2 / cg.rhs2)) + ")");
+    return cg.iterations;
   }
 } // namespace Fidus::Contact
