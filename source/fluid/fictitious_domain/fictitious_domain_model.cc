@@ -220,14 +220,15 @@ namespace Fidus
   FictitiousDomainModel<dim>::solve_stokes(const double         shear_rate,
                                            const SolveLabel    &label,
                                            const Function<dim> *body_force,
-                                           const Function<dim> *extra_force)
+                                           const Function<dim> *extra_force,
+                                           const double resolve_tolerance)
   {
     TimerOutput::Scope scope(timer, "fluid");
     boundary.set_shear_rate(shear_rate);
     solved_shear_rate = shear_rate;
     const typename StokesSolver<dim>::Statistics s =
       extra_force ?
-        solver->resolve(solid, *extra_force) :
+        solver->resolve(solid, *extra_force, resolve_tolerance) :
         solver->solve(solid,
                       exact ? static_cast<const Function<dim> &>(*exact) :
                               boundary,

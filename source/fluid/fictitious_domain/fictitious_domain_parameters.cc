@@ -171,7 +171,10 @@ namespace Fidus
       "contraction so far, and the first one with Reuse multiplier = "
       "true) goes to Tolerance, and a loop that ends on an inexact solve "
       "repeats it to Tolerance: the velocity handed on always meets "
-      "Tolerance. 0: every solve to Tolerance (measured in "
+      "Tolerance. With Lubrication coupling = with the flow it also "
+      "bounds the solves with new loads, which stop at 0.02 times the "
+      "coupling's last change, between Tolerance and this bound, the last "
+      "ones at Tolerance. 0: every solve to Tolerance (measured in "
       "doc/uzawa.md).");
     prm.declare_entry("Maximum cheap iterations",
                       "1000",

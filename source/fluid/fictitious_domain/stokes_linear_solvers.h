@@ -61,6 +61,13 @@ namespace Fidus
     virtual unsigned int
     solve(Statistics &stats, double tolerance) = 0;
 
+    /// Whether solve() is exact whatever its tolerance.
+    virtual bool
+    solves_exactly() const
+    {
+      return false;
+    }
+
   protected:
     StokesSolver<dim> &solver;
   };
@@ -88,6 +95,12 @@ namespace Fidus
 
     unsigned int
     solve(Statistics &stats, double tolerance) override;
+
+    bool
+    solves_exactly() const override
+    {
+      return true;
+    }
 
   private:
     /// The factorised system; analysed on the first solve of a mesh.

@@ -856,6 +856,15 @@ namespace Fidus
     return e;
   }
 
+  template <int dim>
+  bool
+  StokesSolver<dim>::solves_exactly() const
+  {
+    return linear_solver && linear_solver->solves_exactly();
+  }
+
+
+
   template class StokesSolver<2>;
   template class StokesSolver<3>;
 } // namespace Fidus

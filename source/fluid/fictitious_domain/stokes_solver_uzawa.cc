@@ -331,7 +331,8 @@ namespace Fidus
   template <int dim>
   typename StokesSolver<dim>::Statistics
   StokesSolver<dim>::resolve(const SolidIndicator<dim> &solid,
-                             const Function<dim>       &extra_force)
+                             const Function<dim>       &extra_force,
+                             const double               linear_tolerance)
   {
     Assert(keep_rhs_for_resolve && saved_base_rhs.size() == base_rhs.size(),
            ExcMessage("resolve() needs keep_right_hand_side() before the "
@@ -344,7 +345,7 @@ namespace Fidus
     stats.shared_cells     = n_shared_cells;
     // The same solid: the last multiplier is a warm start even where
     // Reuse multiplier is off (that guards against a moved solid).
-    run_uzawa_loop(solid, false, stats);
+    run_uzawa_loop(solid, false, stats, linear_tolerance);
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::cout << "    Stokes again with new loads: right-hand side "
@@ -359,10 +360,14 @@ namespace Fidus
   void
   StokesSolver<dim>::run_uzawa_loop(const SolidIndicator<dim> &solid,
                                     const bool                 start_from_zero,
-                                    Statistics                &stats)
+                                    Statistics                &stats,
+                                    const double               linear_tolerance)
   {
-    Timer timer;
-    if (!multiplier_valid || start_from_zero)
+    const double tolerance =
+      std::max(settings.linear_tolerance, linear_tolerance);
+    Timer      timer;
+    const bool warm = multiplier_valid && !start_from_zero;
+    if (!warm)
       {
         distributed_multiplier = 0;
         multiplier             = distributed_multiplier;
@@ -382,8 +387,7 @@ namespace Fidus
     if (solid.n_particles() == 0)
       {
         assemble_multiplier_rhs(solid);
-        stats.linear_iterations +=
-          solve_linear(stats, settings.linear_tolerance);
+        stats.linear_iterations += solve_linear(stats, tolerance);
         stats.uzawa_iterations  = 1;
         stats.rigidity_residual = 0.;
       }
@@ -396,14 +400,17 @@ namespace Fidus
           settings.rigid_velocity_tolerance;
         loop_settings.forced_velocity_scale = settings.forced_velocity_scale;
         loop_settings.max_iterations        = settings.max_uzawa_iterations;
-        loop_settings.linear_tolerance      = settings.linear_tolerance;
+        loop_settings.linear_tolerance      = tolerance;
         loop_settings.inexact_factor        = settings.inexact_uzawa_factor;
         // With Reuse multiplier the first solve is usually the last: from
         // the last step's multiplier, and also after a remesh, where the
         // penalty alone mostly meets the tolerance (the 2D paper scene:
         // one Uzawa iteration per step). Without it the loop starts from
         // zero every step and takes several (a dense suspension: 4-5).
-        loop_settings.first_solve_exact = settings.reuse_multiplier;
+        // A solve with new loads only (resolve()) starts from the
+        // multiplier of the same solid, and its first solve is usually its
+        // last too (the dense 3D scene: one Uzawa iteration in most).
+        loop_settings.first_solve_exact = settings.reuse_multiplier || warm;
         loop_settings.print =
           settings.verbose &&
           Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
@@ -451,15 +458,21 @@ namespace Fidus
                          const Function<3> *,
                          const Function<3> *);
   template typename StokesSolver<2>::Statistics
-  StokesSolver<2>::resolve(const SolidIndicator<2> &, const Function<2> &);
+  StokesSolver<2>::resolve(const SolidIndicator<2> &,
+                           const Function<2> &,
+                           double);
   template typename StokesSolver<3>::Statistics
-  StokesSolver<3>::resolve(const SolidIndicator<3> &, const Function<3> &);
+  StokesSolver<3>::resolve(const SolidIndicator<3> &,
+                           const Function<3> &,
+                           double);
   template void
   StokesSolver<2>::run_uzawa_loop(const SolidIndicator<2> &,
                                   bool,
-                                  StokesSolver<2>::Statistics &);
+                                  StokesSolver<2>::Statistics &,
+                                  double);
   template void
   StokesSolver<3>::run_uzawa_loop(const SolidIndicator<3> &,
                                   bool,
-                                  StokesSolver<3>::Statistics &);
+                                  StokesSolver<3>::Statistics &,
+                                  double);
 } // namespace Fidus

@@ -145,9 +145,16 @@ namespace Fidus
      * multiplier: for solves that differ in their loads only (the
      * sub-grid lubrication solved with the flow). Needs
      * keep_right_hand_side(true) before that solve().
+     *
+     * @p linear_tolerance, if positive, replaces the linear tolerance for
+     * every solve of this Uzawa loop, the last one included (an inexact
+     * solve of an outer iteration that checks its own convergence); it is
+     * never taken below the settings' linear tolerance.
      */
     Statistics
-    resolve(const SolidIndicator<dim> &solid, const Function<dim> &extra_force);
+    resolve(const SolidIndicator<dim> &solid,
+            const Function<dim>       &extra_force,
+            double                     linear_tolerance = 0.);
 
     /// Keep a copy of each solve()'s right-hand side for resolve() (one
     /// vector of the unknowns' size).
@@ -238,6 +245,11 @@ namespace Fidus
       return quadrature;
     }
 
+    /// Whether the linear solves are exact whatever tolerance they are
+    /// given (the direct solver), so that an inexact one saves nothing.
+    bool
+    solves_exactly() const;
+
     /// Total number of DoFs.
     types::global_dof_index
     n_dofs() const
@@ -326,10 +338,12 @@ namespace Fidus
     /// The Uzawa loop on the assembled system and its set-up
     /// preconditioner, from a zero multiplier if @p start_from_zero (or no
     /// valid one), else from the last; fills the loop's part of @p stats.
+    /// A positive @p linear_tolerance replaces the settings' (resolve()).
     void
     run_uzawa_loop(const SolidIndicator<dim> &solid,
                    bool                       start_from_zero,
-                   Statistics                &stats);
+                   Statistics                &stats,
+                   double                     linear_tolerance = 0.);
     void
     assemble_multiplier_rhs(const SolidIndicator<dim> &solid);
     /// The strain the current solution leaves in the solid
