@@ -17,6 +17,9 @@
 //   resistance just below the exact gap.
 // - The correction acted, and the pair passes: at the end the second
 //   sphere, which started downstream, is upstream of the first.
+// - Solved with the flow (Lubrication coupling), the smallest gap is
+//   between 0.5 and 2 times the exact one (measured 0.68), and larger
+//   than after the solve.
 
 #include "../fidus_test.h"
 
@@ -32,28 +35,30 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   redirect_warnings();
 
-  const double       a = 0.05, exact_gap = 7.37e-3 * a;
-  std::ostringstream prm;
-  prm << "set Dimension = 3\nset Output directory = run_output\n"
-      << "subsection Domain\n  set Lower left = 0, 0, 0\n"
-      << "  set Upper right = 1, 1, 1\n"
-      << "  set Boundary condition = linear shear\n"
-      << "  set Shear rate = 1\nend\n"
-      << "subsection Fluid\n  set Lubrication correction = true\n"
-      << "  set Solid retraction = 0\n"
-      << "  set Rigidity tolerance = 1e-3\n  set Rigidity measure = box\n"
-      << "end\n"
-      << "subsection Particles\n  set Radius = " << a << "\n"
-      << "  set Positions = 0.4452, 0.529726, 0.5; 0.5548, 0.470274, 0.5\n"
-      << "end\n"
-      << "subsection Contact\n  set Model = inelastic\nend\n"
-      << "subsection Time stepping\n  set End time = 3\n"
-      << "  set Time step = 0.1\nend\n"
-      << "subsection Mesh refinement\n  set Maximum level = 5\nend\n"
-      << "subsection Output\n  set Verbosity = quiet\nend\n";
-  const auto s =
-    Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
-
+  const double a = 0.05, exact_gap = 7.37e-3 * a;
+  const auto   run = [&](const std::string &fluid_entries,
+                       const double       end_time) {
+    std::ostringstream prm;
+    prm << "set Dimension = 3\nset Output directory = run_output\n"
+        << "subsection Domain\n  set Lower left = 0, 0, 0\n"
+        << "  set Upper right = 1, 1, 1\n"
+        << "  set Boundary condition = linear shear\n"
+        << "  set Shear rate = 1\nend\n"
+        << "subsection Fluid\n  set Lubrication correction = true\n"
+        << "  set Solid retraction = 0\n"
+        << "  set Rigidity tolerance = 1e-3\n  set Rigidity measure = box\n"
+        << fluid_entries << "end\n"
+        << "subsection Particles\n  set Radius = " << a << "\n"
+        << "  set Positions = 0.4452, 0.529726, 0.5; 0.5548, 0.470274, 0.5\n"
+        << "end\n"
+        << "subsection Contact\n  set Model = inelastic\nend\n"
+        << "subsection Time stepping\n  set End time = " << end_time << "\n"
+        << "  set Time step = 0.1\nend\n"
+        << "subsection Mesh refinement\n  set Maximum level = 5\nend\n"
+        << "subsection Output\n  set Verbosity = quiet\nend\n";
+    return Fidus::run_simulation(Fidus::read_parameters_from_string(prm.str()));
+  };
+  const auto s = run("", 3.);
   check_range("smallest gap / exact smallest gap (Batchelor & Green)",
               s.min_gap / exact_gap,
               0.4,
@@ -62,5 +67,19 @@ main(int argc, char **argv)
               (s.positions[1][0] - s.positions[0][0]) / (2. * a),
               -10.,
               -0.1);
+
+  // Solved with the flow (the bonds' loads in the fluid solve), through
+  // the closest approach only (at t = 1.3 here): measured 0.68 of the
+  // exact gap, where the correction after the solve gives 0.44; at the
+  // production settings 0.59 against 0.07-0.21 (doc/validation.md).
+  const auto coupled = run("  set Lubrication coupling = with the flow\n", 1.8);
+  check_range("with the flow: smallest gap / exact smallest gap",
+              coupled.min_gap / exact_gap,
+              0.5,
+              2.);
+  check_range("with the flow / after the solve: smallest gap",
+              coupled.min_gap / s.min_gap,
+              1.2,
+              10.);
   return exit_code();
 }
