@@ -77,6 +77,23 @@ namespace Fidus
       return s;
     }
 
+    /// The loosest linear tolerance of a solve with new loads: the Uzawa
+    /// loop's inexact one ('Inexact Uzawa factor' times the loop's
+    /// tolerance), never below the linear tolerance, which is also what
+    /// an exact (direct) solver gets.
+    double
+    loosest_tolerance(const FictitiousDomainParameters &fd,
+                      const bool                        exact_solver)
+    {
+      if (exact_solver)
+        return fd.linear_tolerance;
+      const double loop_tolerance = fd.rigid_velocity_tolerance > 0. ?
+                                      fd.rigid_velocity_tolerance :
+                                      fd.rigidity_tolerance;
+      return std::max(fd.linear_tolerance,
+                      fd.inexact_uzawa_factor * loop_tolerance);
+    }
+
     double
     dot(const std::vector<double> &a, const std::vector<double> &b)
     {
@@ -135,12 +152,7 @@ namespace Fidus
     // the goal on a looser solve is solved again with the same loads.
     const FictitiousDomainParameters &fd = prm.fictitious_domain;
     const double                      inexact_tolerance =
-      solver->solves_exactly() ?
-                             fd.linear_tolerance :
-                             std::max(fd.linear_tolerance,
-                 fd.inexact_uzawa_factor * (fd.rigid_velocity_tolerance > 0. ?
-                                                                   fd.rigid_velocity_tolerance :
-                                                                   fd.rigidity_tolerance));
+      loosest_tolerance(fd, solver->solves_exactly());
     double tolerance = inexact_tolerance;
     for (unsigned int solves = 1; solves <= max_coupling_solves; ++solves)
       {
