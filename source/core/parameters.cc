@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
@@ -151,11 +152,46 @@ namespace Fidus
     // apart.
     fictitious_domain.resolve_shared_cells(
       contact.model != ContactModel::none || lubrication.enabled);
+    resolve_lubrication_coupling();
     time_stepping.parse(prm);
     refinement.parse(prm);
     output.parse(prm);
 
     check_scene();
+  }
+
+
+
+  double
+  Parameters::particle_volume_fraction() const
+  {
+    double box = 1.;
+    for (unsigned int d = 0; d < dimension; ++d)
+      box *= domain.upper_right[d] - domain.lower_left[d];
+    double solid = 0.;
+    for (const double r : particles.radii)
+      solid += dimension == 2 ? numbers::PI * r * r :
+                                4. / 3. * numbers::PI * r * r * r;
+    return solid / box;
+  }
+
+
+
+  void
+  Parameters::resolve_lubrication_coupling()
+  {
+    using Coupling = LubricationParameters::Coupling;
+    // The cut element keeps 'auto' (its only way is with the flow); the
+    // coupled fictitious domain needs the gaps at the start of the step.
+    if (!lubrication.enabled || lubrication.coupling != Coupling::automatic ||
+        fluid.model != FluidModelType::fictitious_domain)
+      return;
+    const bool dilute =
+      particle_volume_fraction() < LubricationParameters::dilute_fraction;
+    lubrication.coupling =
+      dilute && lubrication.gap_in_time == Contact::GapInTime::start ?
+        Coupling::with_the_flow :
+        Coupling::after_the_solve;
   }
 
 

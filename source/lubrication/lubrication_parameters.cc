@@ -40,8 +40,11 @@ namespace Fidus
       "'Lubrication coupling tolerance' (a few solves per step), so that "
       "the flow around a close pair is that of the pair's lubricated "
       "motion. auto: with the flow for the cut finite element (its only "
-      "way), after the solve for the fictitious domain. Measured on dense "
-      "suspensions in doc/theory/lubrication.md, 'In a dense suspension'.");
+      "way); for the fictitious domain, with the flow where the particles "
+      "fill less than 15 % of the box (a pair, a dilute suspension: the "
+      "closing rates) and 'Lubrication gap in time = start', after the "
+      "solve otherwise (a dense suspension: a fifth of the cost in 3D). "
+      "Measured in doc/theory/lubrication.md, 'Which coupling'.");
     prm.declare_entry(
       "Lubrication coupling tolerance",
       "1e-3",

@@ -13,6 +13,8 @@
 #include <fidus/time_stepping/trapezoidal_scheme.h>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 
 // The time loop, its set-up and the choice of the time step.
 
@@ -126,6 +128,18 @@ namespace Fidus
       {
         fluid->set_subgrid_lubrication(lubrication.get());
         lubrication_in_fluid = true;
+      }
+    // 'Lubrication coupling = auto' chooses by the scene: say which.
+    if (lubrication)
+      {
+        std::ostringstream line;
+        line << "lubrication correction "
+             << (lubrication_in_fluid ? "solved with the flow" :
+                                        "after the solve")
+             << " (the particles fill " << std::setprecision(3)
+             << 100. * parameters.particle_volume_fraction()
+             << " % of the box)";
+        pcout << line.str() << std::endl;
       }
     // A contact correction u - u* is a velocity; the force that gives it to
     // an isolated particle is its drag (doc/rheology.md).

@@ -51,6 +51,12 @@ namespace Fidus
       lubrication ?
         lubrication_stress(lubrication->bonds(), hydrodynamic.volume) :
         SymmetricTensor<2, 3>();
+    // Solved with the flow, the bonds' forces are those of the solve at
+    // this time, linear in its rate like the fluid's stress: rescaled with
+    // it (after the solve they are the step's, driven by the rate before).
+    record.lubrication_scale =
+      lubrication_in_fluid && g != g_now ? g / g_now : 1.;
+    lubricated *= record.lubrication_scale;
     // The forces between discs press on their cylinders' axial stress as
     // the resolved gap pressure does (with_plane_strain_zz()).
     if (dim == 2)
@@ -169,6 +175,8 @@ namespace Fidus
     std::vector<SymmetricTensor<2, 3>> lubricated =
       lubrication ? lubrication_stresslets(lubrication->bonds(), n) :
                     std::vector<SymmetricTensor<2, 3>>(n);
+    for (SymmetricTensor<2, 3> &l : lubricated)
+      l *= record.lubrication_scale;
     if (dim == 2)
       for (unsigned int i = 0; i < n; ++i)
         {

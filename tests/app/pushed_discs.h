@@ -47,6 +47,11 @@ namespace FidusTest
       << "  set Rigid velocity tolerance = 1e-5\n"
       << "  set Maximum Uzawa iterations = 30\n"
       << "  set Lubrication correction = true\n"
+      // The calibrated correction after the solve unless the caller asks
+      // for the coupling (auto would solve a pair with the flow).
+      << (fluid_entries.find("Lubrication coupling") == std::string::npos ?
+            "  set Lubrication coupling = after the solve\n" :
+            "")
       << fluid_entries
       << "  subsection Linear solver\n    set Tolerance = 1e-9\n  end\n"
       << "end\n"

@@ -70,7 +70,7 @@ expect_error "lubrication coupling without the correction" "Fluid/Lubrication co
 expect_error "lubrication coupled with no flow" "Fluid/Lubrication coupling' has the value 'with the flow' with 'Fluid/Model = undisturbed shear', which solves no flow; allowed: auto, after the solve" \
   "$(base; printf 'subsection Fluid\n  set Model = undisturbed shear\n  set Lubrication correction = true\n  set Lubrication coupling = with the flow\nend\n')"
 expect_error "coupling tolerance that nothing uses" "Fluid/Lubrication coupling tolerance' has the value 0.01, which only 'Fluid/Model = fictitious domain' with 'Fluid/Lubrication coupling = with the flow' uses" \
-  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication coupling tolerance = 1e-2\nend\n')"
+  "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication coupling = after the solve\n  set Lubrication coupling tolerance = 1e-2\nend\n')"
 expect_error "coupled lubrication with the step mean" "Fluid/Lubrication gap in time' is not 'start' with 'Fluid/Lubrication coupling = with the flow'.*allowed: start" \
   "$(base; printf 'subsection Fluid\n  set Lubrication correction = true\n  set Lubrication coupling = with the flow\n  set Lubrication gap in time = step mean\nend\n')"
 expect_error "cut element lubricated below the roughness" "Fluid/Cut minimum gap' has the value 0.001 with 'Fluid/Lubrication correction' and 'Contact/Roughness = 0.005'; allowed: a gap above the roughness" \

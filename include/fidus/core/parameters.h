@@ -55,6 +55,20 @@ namespace Fidus
     double
     finest_cell_size() const;
 
+    /// The particles' nominal volume fraction (area fraction in 2D): their
+    /// volumes over the box's.
+    double
+    particle_volume_fraction() const;
+
+    /// Resolve 'Fluid/Lubrication coupling = auto' for the fictitious
+    /// domain from the scene (called by parse()): with the flow below
+    /// LubricationParameters::dilute_fraction, where the bonds are few and
+    /// a pair's closing rate needs the flow of its lubricated motion;
+    /// after the solve in a dense suspension, where the coupled solves
+    /// cost several times more for no measured gain in the stress.
+    void
+    resolve_lubrication_coupling();
+
     /// Check the scene as a whole (called by parse()): each module's own
     /// checks, then what involves several.
     void

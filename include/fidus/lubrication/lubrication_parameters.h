@@ -56,7 +56,9 @@ namespace Fidus
     enum class Coupling
     {
       /// the fluid model's own way: with the flow for the cut finite
-      /// element, after the solve for the fictitious domain
+      /// element; for the fictitious domain, with the flow in a dilute
+      /// scene and after the solve in a dense one (resolved by
+      /// Parameters::resolve_lubrication_coupling())
       automatic,
       /// the rigid velocities of the solve corrected afterwards, with the
       /// particles' isolated drags standing for the fluid
@@ -65,6 +67,10 @@ namespace Fidus
       with_the_flow
     };
     Coupling coupling = Coupling::automatic;
+    /// Below this volume fraction of the particles, 'auto' solves the
+    /// fictitious domain's bonds with the flow (doc/theory/lubrication.md,
+    /// "Which coupling").
+    static constexpr double dilute_fraction = 0.15;
     /// Fluid/Lubrication coupling tolerance: the coupled iteration stops
     /// when no rigid velocity changes by more than this fraction of the
     /// largest one.

@@ -215,6 +215,10 @@ namespace Fidus
       Contact::LubricationStatistics   lubrication;
       typename FluidModel<dim>::Stress hydrodynamic;
       SuspensionStress                 stress;
+      /// The factor from the bonds' forces to the row's shear rate: not 1
+      /// only at a jump of the rate with the bonds solved with the flow,
+      /// whose forces belong to the solve at the new rate.
+      double lubrication_scale = 1.;
     } record;
     /// The step's predicted velocities, the lubricated ones and the
     /// corrected ones the particles move with.

@@ -221,18 +221,20 @@ namespace Fidus
                                            const SolveLabel    &label,
                                            const Function<dim> *body_force,
                                            const Function<dim> *extra_force,
-                                           const double resolve_tolerance)
+                                           const double linear_tolerance)
   {
     TimerOutput::Scope scope(timer, "fluid");
     boundary.set_shear_rate(shear_rate);
     solved_shear_rate = shear_rate;
     const typename StokesSolver<dim>::Statistics s =
       extra_force ?
-        solver->resolve(solid, *extra_force, resolve_tolerance) :
+        solver->resolve(solid, *extra_force, linear_tolerance) :
         solver->solve(solid,
                       exact ? static_cast<const Function<dim> &>(*exact) :
                               boundary,
-                      body_force);
+                      body_force,
+                      nullptr,
+                      linear_tolerance);
     Statistics stats;
     stats.n_cells                    = tria->n_global_active_cells();
     stats.n_dofs                     = solver->n_dofs();

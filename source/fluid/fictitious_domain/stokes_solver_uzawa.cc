@@ -291,7 +291,8 @@ namespace Fidus
   StokesSolver<dim>::solve(const SolidIndicator<dim> &solid,
                            const Function<dim>       &boundary_velocity,
                            const Function<dim>       *body_force,
-                           const Function<dim>       *fluid_viscosity)
+                           const Function<dim>       *fluid_viscosity,
+                           const double               linear_tolerance)
   {
     Statistics stats;
     Timer      timer;
@@ -314,7 +315,7 @@ namespace Fidus
 
     if (keep_rhs_for_resolve)
       saved_base_rhs = base_rhs;
-    run_uzawa_loop(solid, !settings.reuse_multiplier, stats);
+    run_uzawa_loop(solid, !settings.reuse_multiplier, stats, linear_tolerance);
     if (settings.verbose &&
         Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::cout << "    Stokes: assembly " << stats.assemble_seconds
@@ -451,12 +452,14 @@ namespace Fidus
   StokesSolver<2>::solve(const SolidIndicator<2> &,
                          const Function<2> &,
                          const Function<2> *,
-                         const Function<2> *);
+                         const Function<2> *,
+                         double);
   template typename StokesSolver<3>::Statistics
   StokesSolver<3>::solve(const SolidIndicator<3> &,
                          const Function<3> &,
                          const Function<3> *,
-                         const Function<3> *);
+                         const Function<3> *,
+                         double);
   template typename StokesSolver<2>::Statistics
   StokesSolver<2>::resolve(const SolidIndicator<2> &,
                            const Function<2> &,

@@ -99,14 +99,14 @@ namespace Fidus
     /// The Uzawa loop's statistics with the body force @p body_force (null:
     /// none); a loop that stopped short is a warning. With @p extra_force:
     /// the last solve again with that body force added to its loads
-    /// (StokesSolver::resolve()), @p body_force unused, and a positive
-    /// @p resolve_tolerance the linear tolerance of that loop's solves.
+    /// (StokesSolver::resolve()), @p body_force unused. A positive
+    /// @p linear_tolerance is the linear tolerance of the loop's solves.
     Statistics
     solve_stokes(double               shear_rate,
                  const SolveLabel    &label,
                  const Function<dim> *body_force,
-                 const Function<dim> *extra_force       = nullptr,
-                 double               resolve_tolerance = 0.);
+                 const Function<dim> *extra_force      = nullptr,
+                 double               linear_tolerance = 0.);
     /**
      * The solve with the sub-grid lubrication's bonds at @p X acting on the
      * particles as forces and torques (Contact::LubricationCoupling),

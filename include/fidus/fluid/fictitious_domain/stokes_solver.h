@@ -129,13 +129,17 @@ namespace Fidus
     /**
      * Solve for the given solid region and boundary velocity (a function of
      * dim+1 components). Optional: a body force (dim+1 components) and a
-     * variable fluid viscosity (scalar) used by verification tests.
+     * variable fluid viscosity (scalar) used by verification tests, and
+     * a linear tolerance for the loop's solves above Linear
+     * solver/Tolerance (a solve whose velocities only start an iteration:
+     * 0 keeps Tolerance).
      */
     Statistics
     solve(const SolidIndicator<dim> &solid,
           const Function<dim>       &boundary_velocity,
-          const Function<dim>       *body_force      = nullptr,
-          const Function<dim>       *fluid_viscosity = nullptr);
+          const Function<dim>       *body_force       = nullptr,
+          const Function<dim>       *fluid_viscosity  = nullptr,
+          double                     linear_tolerance = 0.);
 
     /**
      * Solve again with the system of the last solve() (the same solid,
