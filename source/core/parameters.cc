@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deal.II/base/numbers.h>
 #include <deal.II/base/parameter_handler.h>
 #include <fidus/core/input_error.h>
 #include <fidus/core/parameters.h>
+#include <fidus/particles/particle_measure.h>
 #include <fstream>
 
 namespace Fidus
@@ -170,8 +170,7 @@ namespace Fidus
       box *= domain.upper_right[d] - domain.lower_left[d];
     double solid = 0.;
     for (const double r : particles.radii)
-      solid += dimension == 2 ? numbers::PI * r * r :
-                                4. / 3. * numbers::PI * r * r * r;
+      solid += particle_measure(dimension, r);
     return solid / box;
   }
 

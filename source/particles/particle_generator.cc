@@ -3,6 +3,7 @@
 #include <fidus/contact/contact_error.h>
 #include <fidus/contact/pair_search.h>
 #include <fidus/particles/particle_generator.h>
+#include <fidus/particles/particle_measure.h>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -12,7 +13,6 @@ namespace Fidus::Contact
 {
   namespace
   {
-    constexpr double pi = 3.14159265358979323846;
 
     /// Densest packings: hexagonal discs, FCC spheres.
     constexpr double densest_2d = 0.90689968211710892; // pi / (2 sqrt 3)
@@ -92,13 +92,6 @@ namespace Fidus::Contact
     private:
       std::uint64_t state;
     };
-
-    /// Area (2D) or volume (3D) of a particle of radius a.
-    double
-    particle_measure(const unsigned int dim, const double a)
-    {
-      return dim == 2 ? pi * a * a : 4. / 3. * pi * a * a * a;
-    }
 
     std::string
     axis_name(const unsigned int d)

@@ -2,6 +2,7 @@
 #include <deal.II/base/numbers.h>
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/fictitious_domain/particle_force_density.h>
+#include <fidus/particles/particle_measure.h>
 
 namespace Fidus
 {
@@ -39,10 +40,9 @@ namespace Fidus
     const double phi   = solid.fraction(x, entry);
     if (phi == 0.)
       return;
-    const unsigned int i = solid.owner(entry);
-    const double       a = solid.radius(entry);
-    const double       volume =
-      dim == 3 ? 4. / 3. * numbers::PI * a * a * a : numbers::PI * a * a;
+    const unsigned int i      = solid.owner(entry);
+    const double       a      = solid.radius(entry);
+    const double       volume = particle_measure(dim, a);
     for (unsigned int d = 0; d < dim; ++d)
       values[d] = phi * forces[i][d] / volume;
     if (!torques)
