@@ -2,6 +2,7 @@
 
 #include <Amesos.h>
 #include <Amesos_Mumps.h>
+#include <Eigen/Core>
 #include <Epetra_LinearProblem.h>
 #include <algorithm>
 #include <array>
@@ -140,6 +141,9 @@ namespace Fidus
     // one core. Threads sum the products in another order: the answers
     // agree with one thread's to round-off.
     MultithreadInfo::set_thread_limit(numbers::invalid_unsigned_int);
+    // Eigen's products (product_transposed()) read cache sizes it sets up
+    // once: set up here, before the threads.
+    Eigen::initParallel();
     dof_handler.distribute_dofs(fe_collection);
     n_fluid        = dof_handler.n_dofs();
     n_total        = n_fluid + n_rigid * particles.size();

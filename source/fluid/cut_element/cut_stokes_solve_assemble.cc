@@ -6,6 +6,7 @@
 #include <deal.II/base/work_stream.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <fidus/fluid/cut_element/cut_level_set.h>
+#include <fidus/fluid/cut_element/product_transposed.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <stdexcept>
 
@@ -14,7 +15,8 @@
 // faces are computed on the machine's cores (WorkStream: one scratch per
 // thread) and added to the global matrices by one thread in the cells'
 // order, so that the system is the same, to the bit, on any number of
-// threads.
+// threads. The kernels' matrix products do not call the BLAS
+// (product_transposed()).
 
 namespace Fidus
 {
@@ -128,9 +130,10 @@ namespace Fidus
       }
     // local is n_ext x n_ext; the volume terms fill its first n_local rows
     // and columns.
+    // Not FullMatrix::mTmult: its BLAS is not safe on two threads at once
+    // (product_transposed()).
     auto &product = scratch.product;
-    product.reinit(n_local, n_local);
-    J.mTmult(product, S);
+    product_transposed(J, S, product);
     for (unsigned int i = 0; i < n_local; ++i)
       for (unsigned int j = 0; j < n_local; ++j)
         copy.local(i, j) += product(i, j);
@@ -441,7 +444,7 @@ namespace Fidus
             signed_jumps(i, first + 2 * dim) = -wp * dp[i];
           }
       }
-    jumps.mTmult(copy.face_matrix, signed_jumps);
+    product_transposed(jumps, signed_jumps, copy.face_matrix);
   }
 
   template <int dim>
