@@ -13,7 +13,6 @@ namespace Fidus::Contact
 {
   namespace
   {
-
     /// Densest packings: hexagonal discs, FCC spheres.
     constexpr double densest_2d = 0.90689968211710892; // pi / (2 sqrt 3)
     constexpr double densest_3d = 0.74048048969306104; // pi / (3 sqrt 2)

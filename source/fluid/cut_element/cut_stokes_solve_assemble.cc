@@ -130,8 +130,6 @@ namespace Fidus
       }
     // local is n_ext x n_ext; the volume terms fill its first n_local rows
     // and columns.
-    // Not FullMatrix::mTmult: its BLAS is not safe on two threads at once
-    // (product_transposed()).
     auto &product = scratch.product;
     product_transposed(J, S, product);
     for (unsigned int i = 0; i < n_local; ++i)

@@ -30,9 +30,7 @@ namespace Fidus
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
     AssertDimension(left.n(), right.n());
     product.reinit(left.m(), right.m());
-    if (left.m() == 0 || right.m() == 0)
-      return;
-    if (left.n() == 0)
+    if (left.m() == 0 || right.m() == 0 || left.n() == 0)
       return; // reinit() left the product zero
     const Eigen::Map<const RowMajor> l(&left(0, 0), left.m(), left.n());
     const Eigen::Map<const RowMajor> r(&right(0, 0), right.m(), right.n());
