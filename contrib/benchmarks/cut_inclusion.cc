@@ -20,7 +20,9 @@ namespace
   /// LINEAR_SOLVER = direct | iterative in the environment (default: the
   /// solver's choice), ITERATIVE_TOLERANCE its tolerance,
   /// VELOCITY_PRECONDITIONER = amg | multigrid, CUT_CELL_BLOCKS = 0 for
-  /// the multigrid's smoother without cut-cell blocks.
+  /// the multigrid's smoother without cut-cell blocks, GAP_LAPLACIAN the
+  /// weight of the thin gaps' pressure Laplacian (0: the pressure mass
+  /// alone) and GAP_THRESHOLD its region in reduced radii.
   template <int dim>
   void
   set_linear_solver(typename Fidus::CutStokesInclusion<dim>::Settings &s)
@@ -37,6 +39,10 @@ namespace
     if (const char *v = std::getenv("VELOCITY_PRECONDITIONER"))
       s.velocity_preconditioner =
         std::string(v) == "amg" ? Velocity::amg : Velocity::multigrid;
+    if (const char *v = std::getenv("GAP_LAPLACIAN"))
+      s.gap_laplacian = std::atof(v);
+    if (const char *v = std::getenv("GAP_THRESHOLD"))
+      s.gap_threshold = std::atof(v);
     if (const char *v = std::getenv("CUT_CELL_BLOCKS"))
       s.cut_cell_blocks = std::string(v) != "0";
   }

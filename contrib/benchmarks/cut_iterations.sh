@@ -14,6 +14,8 @@
 #   contrib/build.sh fidus_cut_inclusion), ITERATIVE_TOLERANCE (default
 #   the solver's, 1e-10), LEVELS_2D ("4 5 6"), GAPS_2D ("0.5 0.1 0.02 0.005
 #   0.001"), LEVELS_SPHERE ("3 4"), GAPS_3D ("0.5 0.1 0.02"),
+#   GAP_LAPLACIAN (the thin gaps' pressure Laplacian's weight; 0 for the
+#   pressure mass alone), GAP_THRESHOLD (its region, in reduced radii),
 #   DEAL_II_NUM_THREADS (the binary takes the machine's cores as threads,
 #   as fidus's cut element does on its one rank; 1 for a single thread).
 set -euo pipefail

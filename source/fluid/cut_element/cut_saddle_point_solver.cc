@@ -238,6 +238,15 @@ namespace Fidus
       }
     catch (const SolverControl::NoConvergence &)
       {}
+    // The thin gaps' lubrication modes (build_gap_laplacian()).
+    if (!gap_pressures.empty())
+      {
+        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
+          r_g[k] = r[gap_pressures[k]];
+        gap_amg.vmult(z_g, r_g);
+        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
+          z[gap_pressures[k]] += gap_weight * z_g[k];
+      }
     // -S^-1, and a constrained pressure's row, the system's diagonal alone,
     // inverted exactly.
     z *= -1.;
@@ -337,6 +346,85 @@ namespace Fidus
 
 
   template <int dim>
+  void
+  CutSaddlePointSolver<dim>::build_gap_laplacian(const Layout &layout)
+  {
+    if (layout.gap_laplacian <= 0. || layout.in_gap.empty())
+      return;
+    const unsigned int n_u = velocity.size(), n_p = pressure.size();
+    std::vector<int>   gap_index(n_p, -1);
+    for (unsigned int k = 0; k < n_p; ++k)
+      if (layout.in_gap[pressure[k]] && !layout.constrained[pressure[k]])
+        {
+          gap_index[k] = gap_pressures.size();
+          gap_pressures.push_back(k);
+        }
+    const unsigned int n_g = gap_pressures.size();
+    if (n_g == 0)
+      return;
+    gap_weight = layout.gap_laplacian;
+
+    // Each fluid velocity's column of B^T, its gap pressures only (the
+    // rigid unknowns, which couple to every pressure of their particle's
+    // cut cells, are left out).
+    std::vector<std::pair<unsigned int, double>> column;
+    const auto gap_column = [&](const unsigned int k) {
+      column.clear();
+      for (auto it = coupling.begin(k); it != coupling.end(k); ++it)
+        if (gap_index[it->column()] >= 0 && it->value() != 0.)
+          column.emplace_back(gap_index[it->column()], it->value());
+    };
+    // The ghost penalty's entries among the gap pressures (the system
+    // holds -C).
+    const auto for_ghost_penalty = [&](const auto &f) {
+      for (unsigned int g = 0; g < n_g; ++g)
+        {
+          const unsigned int i = pressure[gap_pressures[g]];
+          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+            if (layout.kind[it->column()] == 1 &&
+                gap_index[local[it->column()]] >= 0)
+              f(g, gap_index[local[it->column()]], -it->value());
+        }
+    };
+    DynamicSparsityPattern dsp(n_g, n_g);
+    for (unsigned int k = 0; k < n_u; ++k)
+      {
+        gap_column(k);
+        for (const auto &i : column)
+          for (const auto &j : column)
+            dsp.add(i.first, j.first);
+      }
+    for_ghost_penalty([&](const unsigned int i, const unsigned int j, double) {
+      dsp.add(i, j);
+    });
+    gap_sparsity.copy_from(dsp);
+    gap_matrix.reinit(gap_sparsity);
+    for (unsigned int k = 0; k < n_u; ++k)
+      {
+        gap_column(k);
+        const double d = velocity_matrix.diag_element(k);
+        for (const auto &i : column)
+          for (const auto &j : column)
+            gap_matrix.add(i.first, j.first, i.second * j.second / d);
+      }
+    for_ghost_penalty([&](const unsigned int i,
+                          const unsigned int j,
+                          const double value) { gap_matrix.add(i, j, value); });
+    // One AMG cycle stands for L_gap^-1: FGMRES took the same iterations
+    // as with L_gap factorised, in 2D, at less cost (and a 3D factor is
+    // dear).
+    gap_trilinos.reinit(gap_matrix);
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic        = true;
+    data.smoother_sweeps = 2;
+    gap_amg.initialize(gap_trilinos, data);
+    r_g.reinit(n_g);
+    z_g.reinit(n_g);
+  }
+
+
+
+  template <int dim>
   CutSaddlePointSolver<dim>::CutSaddlePointSolver(
     const SparseMatrix<double> &matrix,
     const SparseMatrix<double> &pressure_mass,
@@ -374,6 +462,7 @@ namespace Fidus
     else
       setup_velocity_amg(layout);
     pressure_jacobi.initialize(pressure_schur);
+    build_gap_laplacian(layout);
 
     if (!multigrid)
       compute_rigid_schur();

@@ -473,6 +473,49 @@ namespace Fidus
   }
 
   template <int dim>
+  bool
+  CutStokesSolve<dim>::in_thin_gap(const Point<dim> &x) const
+  {
+    // The two nearest surfaces: the gap's width at x is the sum of the
+    // distances to them, its lateral scale set by their reduced radius.
+    // A brute-force search over the balls (with their periodic images):
+    // a few hundred distances per pressure even for the dense scenes,
+    // small beside the pressure's share of the assembly.
+    double     d1 = std::numeric_limits<double>::infinity(), d2 = d1;
+    double     r1 = d1, r2 = d1;
+    const auto nearer = [&](const double d, const double r) {
+      if (d < d1)
+        {
+          d2 = d1;
+          r2 = r1;
+          d1 = d;
+          r1 = r;
+        }
+      else if (d < d2)
+        {
+          d2 = d;
+          r2 = r;
+        }
+    };
+    for (const auto &b : mesh->get_balls())
+      nearer(std::max(0., x.distance(b.center) - b.radius), b.radius);
+    const double infinite = std::numeric_limits<double>::infinity();
+    for (unsigned int d = 0; d < dim; ++d)
+      if (std::find(periodic_axes.begin(), periodic_axes.end(), d) ==
+          periodic_axes.end())
+        {
+          nearer(std::max(0., x[d]), infinite);
+          nearer(std::max(0., mesh->side(d) - x[d]), infinite);
+        }
+    const double reduced = std::isinf(r1) ? r2 :
+                           std::isinf(r2) ? r1 :
+                                            r1 * r2 / (r1 + r2);
+    return !std::isinf(reduced) && d1 + d2 < s.gap_threshold * reduced;
+  }
+
+
+
+  template <int dim>
   void
   CutStokesSolve<dim>::solve_iterative(const Vector<double> &scaled_rhs,
                                        Vector<double>       &scaled_solution,
@@ -503,6 +546,14 @@ namespace Fidus
                 taylor_hood.system_to_component_index(k).first;
             }
         }
+    if (s.gap_laplacian > 0.)
+      {
+        layout.gap_laplacian = s.gap_laplacian;
+        layout.in_gap.assign(n_total, false);
+        for (unsigned int i = 0; i < n_fluid; ++i)
+          if (is_pressure[i])
+            layout.in_gap[i] = in_thin_gap(layout.support_point[i]);
+      }
     for (unsigned int i = 0; i < n_fluid; ++i)
       for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
         it->value() *= scale[i] * scale[it->column()];

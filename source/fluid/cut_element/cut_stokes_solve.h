@@ -413,6 +413,11 @@ namespace Fidus
     void
     scale_system();
 
+    /// Whether the pressure at @p x lies in a thin gap
+    /// (Settings::gap_threshold).
+    bool
+    in_thin_gap(const Point<dim> &x) const;
+
     /// The iterative solve of the scaled system: FGMRES with a block
     /// preconditioner (CutSaddlePointSolver); @p residual is A' x' - b'.
     void

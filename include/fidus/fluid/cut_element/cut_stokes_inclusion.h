@@ -172,6 +172,19 @@ namespace Fidus
       /// The velocity block's preconditioner in the iterative solver.
       VelocityPreconditioner velocity_preconditioner =
         VelocityPreconditioner::multigrid;
+      /// Weight of the thin gaps' pressure Laplacian in the iterative
+      /// solver's pressure preconditioner
+      /// (CutSaddlePointSolver::build_gap_laplacian()); 0: the pressure
+      /// mass alone. 0.01 to 0.03 gave the fewest FGMRES iterations on
+      /// pairs at gaps from 0.5 a to 0.001 a (doc/theory/cut_element.md,
+      /// "The pressure side").
+      double gap_laplacian = 0.01;
+      /// A pressure is in a thin gap where the distances from it to its two
+      /// nearest surfaces (particles or walls) add up to less than this
+      /// many reduced radii a1 a2 / (a1 + a2) (a wall's radius infinite).
+      /// From 0.25 to 2 the 2D pairs' counts were the same to an
+      /// iteration; the smallest region is the cheapest to set up.
+      double gap_threshold = 0.25;
       /// Cut-cell blocks in the multigrid's smoother (CutCellBlockJacobi);
       /// false: point Jacobi, as before they were added (for comparisons).
       bool cut_cell_blocks = true;
