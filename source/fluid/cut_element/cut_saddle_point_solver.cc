@@ -397,8 +397,11 @@ namespace Fidus
     for_ghost_penalty([&](const unsigned int i, const unsigned int j, double) {
       dsp.add(i, j);
     });
+    // Assembled here, then copied into Trilinos's matrix for the AMG: this
+    // copy is freed on return.
+    SparsityPattern gap_sparsity;
     gap_sparsity.copy_from(dsp);
-    gap_matrix.reinit(gap_sparsity);
+    SparseMatrix<double> gap_matrix(gap_sparsity);
     for (unsigned int k = 0; k < n_u; ++k)
       {
         gap_column(k);

@@ -501,8 +501,7 @@ namespace Fidus
       nearer(std::max(0., x.distance(b.center) - b.radius), b.radius);
     const double infinite = std::numeric_limits<double>::infinity();
     for (unsigned int d = 0; d < dim; ++d)
-      if (std::find(periodic_axes.begin(), periodic_axes.end(), d) ==
-          periodic_axes.end())
+      if (!is_periodic(d))
         {
           nearer(std::max(0., x[d]), infinite);
           nearer(std::max(0., mesh->side(d) - x[d]), infinite);

@@ -195,8 +195,6 @@ namespace Fidus
     /// The pressures in thin gaps (their indices among the pressures), the
     /// gap Laplacian on them, its AMG and its weight (build_gap_laplacian).
     std::vector<unsigned int>         gap_pressures;
-    SparsityPattern                   gap_sparsity;
-    SparseMatrix<double>              gap_matrix;
     TrilinosWrappers::SparseMatrix    gap_trilinos;
     TrilinosWrappers::PreconditionAMG gap_amg;
     double                            gap_weight = 0.;
