@@ -17,12 +17,24 @@
 
 namespace
 {
+  /// PAIR_ANGLE in the environment: a held pair's line of centres that
+  /// many degrees below the x axis (default 45, the compressional axis
+  /// of the shear), in radians.
+  double
+  pair_angle()
+  {
+    const char *v = std::getenv("PAIR_ANGLE");
+    return (v ? std::atof(v) : 45.) * M_PI / 180.;
+  }
+
   /// LINEAR_SOLVER = direct | iterative in the environment (default: the
   /// solver's choice), ITERATIVE_TOLERANCE its tolerance,
   /// VELOCITY_PRECONDITIONER = amg | multigrid, CUT_CELL_BLOCKS = 0 for
-  /// the multigrid's smoother without cut-cell blocks, GAP_LAPLACIAN the
-  /// weight of the thin gaps' pressure Laplacian (0: the pressure mass
-  /// alone) and GAP_THRESHOLD its region in reduced radii.
+  /// the multigrid's smoother without cut-cell blocks, SMOOTHER_DEGREE its
+  /// products per smoothing, GAP_LAPLACIAN the weight of the thin gaps'
+  /// pressure Laplacian (0: the pressure mass alone), GAP_THRESHOLD its
+  /// region in reduced radii, NITSCHE, GHOST_VELOCITY and GHOST_PRESSURE
+  /// the discretisation's penalties (default: the solver's).
   template <int dim>
   void
   set_linear_solver(typename Fidus::CutStokesInclusion<dim>::Settings &s)
@@ -45,6 +57,14 @@ namespace
       s.gap_threshold = std::atof(v);
     if (const char *v = std::getenv("CUT_CELL_BLOCKS"))
       s.cut_cell_blocks = std::string(v) != "0";
+    if (const char *v = std::getenv("SMOOTHER_DEGREE"))
+      s.smoother_degree = std::atoi(v);
+    if (const char *v = std::getenv("NITSCHE"))
+      s.nitsche = std::atof(v);
+    if (const char *v = std::getenv("GHOST_VELOCITY"))
+      s.ghost_velocity = std::atof(v);
+    if (const char *v = std::getenv("GHOST_PRESSURE"))
+      s.ghost_pressure = std::atof(v);
   }
 
   template <int dim>
@@ -77,12 +97,6 @@ namespace
             s.particles    = {{c, a, dealii::Tensor<1, dim>()}};
             s.global_level = level - band_levels;
             s.band_levels  = band_levels;
-            if (const char *v = std::getenv("NITSCHE"))
-              s.nitsche = std::atof(v);
-            if (const char *v = std::getenv("GHOST_VELOCITY"))
-              s.ghost_velocity = std::atof(v);
-            if (const char *v = std::getenv("GHOST_PRESSURE"))
-              s.ghost_pressure = std::atof(v);
             if (const char *v = std::getenv("QUADRATURE_POINTS"))
               s.quadrature_points = std::atoi(v);
             set_linear_solver<dim>(s);
@@ -149,8 +163,9 @@ namespace
         {
           const double         d = 2. * a + gap * a;
           dealii::Tensor<1, 2> n; // from disc 0 to disc 1
-          n[0] = held ? 1. / std::sqrt(2.) : 1.;
-          n[1] = held ? -1. / std::sqrt(2.) : 0.;
+          const double         angle = pair_angle();
+          n[0]                       = held ? std::cos(angle) : 1.;
+          n[1]                       = held ? -std::sin(angle) : 0.;
           const dealii::Point<2> middle(0.5, 0.5);
           const auto             force = held ? 0. * n : n;
           Solver::Settings       s;
@@ -206,8 +221,9 @@ namespace
         {
           const double         d = 2. * a + gap * a;
           dealii::Tensor<1, 3> n;
-          n[0] = 1. / std::sqrt(2.);
-          n[1] = -1. / std::sqrt(2.);
+          const double         angle = pair_angle();
+          n[0]                       = std::cos(angle);
+          n[1]                       = -std::sin(angle);
           const dealii::Point<3> middle(0.5, 0.5, 0.5);
           Solver::Settings       s;
           s.particles    = {{middle - 0.5 * d * n, a, 0. * n},

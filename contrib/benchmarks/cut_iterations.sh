@@ -16,6 +16,10 @@
 #   0.001"), LEVELS_SPHERE ("3 4"), GAPS_3D ("0.5 0.1 0.02"),
 #   GAP_LAPLACIAN (the thin gaps' pressure Laplacian's weight; 0 for the
 #   pressure mass alone), GAP_THRESHOLD (its region, in reduced radii),
+#   PAIR_ANGLE (the held pairs' line of centres, degrees below the x axis;
+#   default 45), NITSCHE (the Nitsche parameter; default the solver's,
+#   100), SMOOTHER_DEGREE (the velocity multigrid's products per
+#   smoothing; default 2),
 #   DEAL_II_NUM_THREADS (the binary takes the machine's cores as threads,
 #   as fidus's cut element does on its one rank; 1 for a single thread).
 set -euo pipefail

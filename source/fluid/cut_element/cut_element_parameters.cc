@@ -54,14 +54,16 @@ namespace Fidus
       "is cut by two surfaces).");
     prm.declare_entry(
       "Cut Nitsche parameter",
-      "40",
+      "100",
       Patterns::Double(0.),
       "With 'cut finite element': the penalty of Nitsche's method that "
       "holds the fluid to each particle's rigid motion, times eta / h; > 0. "
-      "Larger values hold it more strictly and make the velocity block "
-      "better conditioned; the dense 2D scene's viscosity moves by 0.06 % "
-      "from 40 to 200 with every gap resolved, by 0.7 % with unrefined "
-      "gaps (doc/theory/cut_element.md).");
+      "Below about 100 the velocity block can lose its positive "
+      "definiteness on cut slivers, which the direct solver does not "
+      "notice and the iterative one cannot survive (40, the former "
+      "default, stalled FGMRES on pairs at some orientations); the dense "
+      "2D scene's viscosity moves by 0.06 % from 40 to 200 with every gap "
+      "resolved, by 0.7 % with unrefined gaps (doc/theory/cut_element.md).");
     prm.declare_entry(
       "Cut velocity ghost penalty",
       "1e-3",

@@ -559,6 +559,7 @@ namespace Fidus
     std::unique_ptr<CutVelocityMultigrid<dim>>   multigrid;
     typename CutVelocityMultigrid<dim>::Settings multigrid_settings;
     multigrid_settings.cut_cell_blocks = s.cut_cell_blocks;
+    multigrid_settings.smoother_degree = s.smoother_degree;
     if (!s.cut_cell_blocks)
       multigrid_settings.smoothing_range = 15.;
     if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)

@@ -56,8 +56,8 @@ namespace Fidus
     double gap_cells = 2.;
     /// auto (or automatic), direct or iterative.
     std::string linear_solver = "automatic";
-    /// Nitsche's penalty, times eta / h.
-    double nitsche = 40.;
+    /// Nitsche's penalty, times eta / h (CutStokesInclusion::Settings).
+    double nitsche = 100.;
     /// The ghost penalties of the velocity and the pressure.
     double ghost_velocity = 1e-3, ghost_pressure = 1e-3;
   };

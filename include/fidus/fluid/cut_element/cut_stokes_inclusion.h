@@ -144,8 +144,12 @@ namespace Fidus
       unsigned int band_levels = 0;
       /// Width of that band in cells of the level being refined.
       double band_cells = 3.;
-      /// Nitsche parameter: the penalty is nitsche * viscosity / h.
-      double nitsche = 40.;
+      /// Nitsche parameter: the penalty is nitsche * viscosity / h. At 40
+      /// the velocity block lost its positive definiteness on some cut
+      /// cells of pairs whose line of centres is not on a mesh diagonal,
+      /// and FGMRES stalled (doc/theory/cut_element.md, "The Nitsche
+      /// parameter").
+      double nitsche = 100.;
       /// Ghost penalty of the velocity, times viscosity h^(2k-1) for the
       /// jumps of the k-th normal derivatives, k = 1, 2.
       double ghost_velocity = 1e-3;
@@ -188,6 +192,9 @@ namespace Fidus
       /// Cut-cell blocks in the multigrid's smoother (CutCellBlockJacobi);
       /// false: point Jacobi, as before they were added (for comparisons).
       bool cut_cell_blocks = true;
+      /// Matrix-vector products per smoothing of the velocity multigrid,
+      /// before and after (CutVelocityMultigrid::Settings).
+      unsigned int smoother_degree = 2;
       /// Bytes the solve may use in all, > 0; 0: what the machine has
       /// available (MemoryBudget). A mesh whose system would not fit
       /// (estimated from its unknowns) throws, naming what to change,
