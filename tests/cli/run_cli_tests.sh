@@ -52,6 +52,8 @@ expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value '
   "$(base; cut_fluid '  set Cut minimum gap = 0')"
 expect_error "cut element Nitsche parameter 0" "Fluid/Cut Nitsche parameter' has the value 0; allowed: a value > 0" \
   "$(base; cut_fluid '  set Cut Nitsche parameter = 0')"
+expect_error "cut element started from zero with the direct solver" "Fluid/Cut initial guess' has the value 'zero' with the direct solver ('Fluid/Cut linear solver = auto' in 2D), which does not read it; allowed: its default, or 'Fluid/Cut linear solver = iterative'" \
+  "$(base; cut_fluid '  set Cut initial guess = zero')"
 expect_error "cut entry with the fictitious domain" "Fluid/Cut velocity ghost penalty' is set with 'Fluid/Model = fictitious domain', which does not read it; allowed: its default, or 'Fluid/Model = cut finite element'" \
   "$(base; printf 'subsection Fluid\n  set Cut velocity ghost penalty = 1e-2\nend\n')"
 expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \

@@ -116,12 +116,21 @@ namespace Fidus
       prm.domain.boundary_condition == BoundaryCondition::sliding_walls ?
         Cut::Boundary::sliding_walls :
         Cut::Boundary::linear_shear;
-    s.shear_rate   = g;
-    s.viscosity    = prm.fluid.viscosity;
-    s.box_cells    = box_cells;
-    s.keep_fields  = prm.output.field_output_interval > 0;
-    s.memory_limit = prm.fictitious_domain.memory_per_rank;
-    s.global_level = prm.refinement.minimum_level;
+    s.shear_rate = g;
+    s.viscosity  = prm.fluid.viscosity;
+    s.box_cells  = box_cells;
+    // The fields are kept for output, and as the next solve's start with
+    // the iterative solver (keeping costs a second DoF numbering of the
+    // mesh, small beside the solve; 'auto' is direct in 2D).
+    const std::string &solver = prm.cut_element.linear_solver;
+    const bool         direct =
+      solver == "direct" || (dim == 2 && solver != "iterative");
+    const bool warm_start =
+      !direct && prm.cut_element.initial_guess == "previous solve";
+    s.keep_fields   = prm.output.field_output_interval > 0 || warm_start;
+    s.initial_guess = warm_start ? last_fields : nullptr;
+    s.memory_limit  = prm.fictitious_domain.memory_per_rank;
+    s.global_level  = prm.refinement.minimum_level;
     s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
     s.gap_cells   = prm.cut_element.gap_cells;
     s.nitsche     = prm.cut_element.nitsche;
@@ -246,13 +255,16 @@ namespace Fidus
     std::cout << "    cut element: " << r.n_dofs << " unknowns (" << r.n_entries
               << " matrix entries), " << r.n_cells << " cells ("
               << r.n_cut_cells << " cut), "
-              << (r.n_iterations > 0 ?
-                    "FGMRES " + std::to_string(r.n_iterations) :
-                    std::string("direct"))
+              << (r.iterative ? "FGMRES " + std::to_string(r.n_iterations) :
+                                std::string("direct"))
               << "; s: mesh " << t.mesh << ", DoFs and pattern " << t.dofs
               << ", assembly " << t.assembly << ", solve " << t.solve;
-    if (r.n_iterations > 0)
-      std::cout << " (of which FGMRES " << t.fgmres << ")";
+    if (r.iterative)
+      std::cout << " (of which FGMRES " << t.fgmres
+                << ", from a start at the relative residual "
+                << r.initial_residual << "; set-up: blocks " << t.blocks
+                << ", pressure " << t.pressure << ", velocity " << t.velocity
+                << ")";
     std::cout << ", measure " << t.measure << ", all " << r.seconds
               << std::endl;
   }

@@ -65,6 +65,17 @@ namespace Fidus
       "2D scene's viscosity moves by 0.06 % from 40 to 200 with every gap "
       "resolved, by 0.7 % with unrefined gaps (doc/theory/cut_element.md).");
     prm.declare_entry(
+      "Cut initial guess",
+      "previous solve",
+      Patterns::Selection("previous solve|zero"),
+      "With 'cut finite element' and its iterative solver: where FGMRES "
+      "starts. 'previous solve' evaluates the last solve's velocity, "
+      "pressure and rigid motions on the new mesh (the particles move a "
+      "fraction of a cell per step), so fewer iterations reach the same "
+      "absolute tolerance; 'zero' starts from nothing, as every solve did "
+      "before (for comparisons). Either gives the answer to the solver's "
+      "tolerance (doc/theory/cut_element.md).");
+    prm.declare_entry(
       "Cut velocity ghost penalty",
       "1e-3",
       Patterns::Double(0.),
@@ -102,6 +113,7 @@ namespace Fidus
       nitsche        = prm.get_double("Cut Nitsche parameter");
       ghost_velocity = prm.get_double("Cut velocity ghost penalty");
       ghost_pressure = prm.get_double("Cut pressure ghost penalty");
+      initial_guess  = prm.get("Cut initial guess");
       linear_solver  = prm.get("Cut linear solver");
       // Entries away from their defaults (those of the struct, and
       // 'auto' for the two that have it): with another fluid model they
@@ -122,6 +134,7 @@ namespace Fidus
            "Cut velocity ghost penalty");
       note(ghost_pressure != defaults.ghost_pressure,
            "Cut pressure ghost penalty");
+      note(initial_guess != defaults.initial_guess, "Cut initial guess");
       // The cut element gives the correction its ranges (the minimum gap),
       // so a range set by hand would do nothing.
       ranges_set.clear();
@@ -196,6 +209,17 @@ namespace Fidus
              "the particles)";
         throw InputError(m.str());
       }
+    // The direct solver has no start: 'auto' is direct in 2D.
+    const bool direct = linear_solver == "direct" ||
+                        (scene.dimension == 2 && linear_solver != "iterative");
+    if (direct && initial_guess != CutElementParameters().initial_guess)
+      throw InputError(
+        "entry 'Fluid/Cut initial guess' has the value '" + initial_guess +
+        "' with the direct solver ('Fluid/Cut "
+        "linear solver = " +
+        linear_solver + "' in " + std::to_string(scene.dimension) +
+        "D), which does not read it; allowed: its default, "
+        "or 'Fluid/Cut linear solver = iterative'");
     if (!scene.lubrication.enabled)
       return;
     // The cut element solves the bonds with the flow at the start's gaps.

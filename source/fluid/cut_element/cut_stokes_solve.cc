@@ -15,6 +15,8 @@
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/core/memory_budget.h>
 #include <fidus/core/memory_usage.h>
+#include <fidus/fluid/cut_element/cut_fields.h>
+#include <fidus/fluid/cut_element/cut_initial_guess.h>
 #include <fidus/fluid/cut_element/cut_level_set.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/element_sparsity.h>
@@ -580,15 +582,79 @@ namespace Fidus
                                      layout,
                                      multigrid.get());
     MemoryUsage::release_free_memory();
-    const auto statistics       = solver.solve(scaled_solution,
+    const bool guessed    = initial_guess(layout, scaled_rhs, scaled_solution);
+    const auto statistics = solver.solve(scaled_solution,
                                          scaled_rhs,
                                          s.iterative_tolerance,
-                                         s.iterative_max_iterations);
-    result.n_iterations         = statistics.iterations;
-    result.n_setup_iterations   = statistics.setup_iterations;
-    result.stage_seconds.fgmres = statistics.solve_seconds;
+                                         s.iterative_max_iterations,
+                                         guessed);
+    result.initial_residual       = statistics.initial_residual;
+    result.iterative              = true;
+    result.n_iterations           = statistics.iterations;
+    result.n_setup_iterations     = statistics.setup_iterations;
+    result.stage_seconds.fgmres   = statistics.solve_seconds;
+    result.stage_seconds.blocks   = statistics.blocks_seconds;
+    result.stage_seconds.pressure = statistics.pressure_seconds;
+    result.stage_seconds.velocity = statistics.velocity_seconds;
     apply_system(residual, scaled_solution);
     residual.sadd(-1., scaled_rhs);
+  }
+
+  template <int dim>
+  bool
+  CutStokesSolve<dim>::initial_guess(
+    const typename CutSaddlePointSolver<dim>::Layout &layout,
+    const Vector<double>                             &scaled_rhs,
+    Vector<double>                                   &scaled_solution) const
+  {
+    std::vector<double> sides(dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      sides[d] = side(d);
+    if (!s.initial_guess || !CutInitialGuess<dim>::applies(*s.initial_guess,
+                                                           sides,
+                                                           particles.size()))
+      return false;
+    // The flow is proportional to the shear rate when no force drives a
+    // particle: a changed rate (oscillatory shear, a reversal) scales the
+    // previous field.
+    const CutFields<dim> &previous = *s.initial_guess;
+    bool                  forced   = false;
+    for (const auto &P : particles)
+      forced = forced || P.force.norm() > 0.;
+    const double factor =
+      !forced && previous.proportional && previous.shear_rate != 0. ?
+        g / previous.shear_rate :
+        1.;
+    CutInitialGuess<dim> guess(previous, factor);
+    // Each particle's displacement since, the shortest across periodic
+    // axes.
+    std::vector<Tensor<1, dim>> moved(particles.size());
+    std::vector<bool>           periodic_axis(dim);
+    for (unsigned int d = 0; d < dim; ++d)
+      periodic_axis[d] = is_periodic(d);
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        moved[p] = particles[p].center - previous.centers[p];
+        for (unsigned int d = 0; d < dim; ++d)
+          if (is_periodic(d))
+            moved[p][d] -= side(d) * std::round(moved[p][d] / side(d));
+      }
+    guess.follow(mesh->get_balls(), moved, periodic_axis);
+    // A constrained row holds its diagonal alone: its value is known. The
+    // unknowns are scaled, x' = x / D.
+    for (unsigned int i = 0; i < n_fluid; ++i)
+      scaled_solution[i] =
+        constraints.is_constrained(i) ?
+          scaled_rhs[i] / matrix.diag_element(i) :
+          guess.value(layout.support_point[i], layout.component[i]) / scale[i];
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      {
+        const std::vector<double> v = guess.rigid(p);
+        for (unsigned int k = 0; k < n_rigid; ++k)
+          scaled_solution[n_fluid + p * n_rigid + k] =
+            v[k] / scale[n_fluid + p * n_rigid + k];
+      }
+    return true;
   }
 
   template <int dim>

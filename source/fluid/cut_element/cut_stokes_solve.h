@@ -25,6 +25,7 @@
 #include <deal.II/non_matching/quadrature_generator.h>
 #include <fidus/core/memory_usage.h>
 #include <fidus/fluid/cut_element/cut_mesh.h>
+#include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
 #include <map>
@@ -417,6 +418,18 @@ namespace Fidus
     /// (Settings::gap_threshold).
     bool
     in_thin_gap(const Point<dim> &x) const;
+
+    /**
+     * Fill @p scaled_solution with the previous solve's fields on this
+     * mesh (Settings::initial_guess, CutInitialGuess), scaled as the
+     * system is; the constrained unknowns with their rows' values. False,
+     * and nothing written, without a previous solve of the same box and
+     * number of particles.
+     */
+    bool
+    initial_guess(const typename CutSaddlePointSolver<dim>::Layout &layout,
+                  const Vector<double>                             &scaled_rhs,
+                  Vector<double> &scaled_solution) const;
 
     /// The iterative solve of the scaled system: FGMRES with a block
     /// preconditioner (CutSaddlePointSolver); @p residual is A' x' - b'.

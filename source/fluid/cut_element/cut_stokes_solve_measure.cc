@@ -278,6 +278,15 @@ namespace Fidus
         fields->is_pressure[i] = is_pressure[i];
       }
     fields->fluid_pressure = result.fluid_pressure;
+    for (unsigned int i = n_fluid; i < n_total; ++i)
+      fields->rigid.push_back(solution[i]);
+    fields->shear_rate   = g;
+    fields->proportional = true;
+    for (const auto &P : particles)
+      {
+        fields->proportional = fields->proportional && P.force.norm() == 0.;
+        fields->centers.push_back(P.center);
+      }
     // The mesh goes last: the solve's DoFHandler, still attached to it,
     // detaches when the solve ends, and the mesh lives on in the fields.
     fields->mesh  = std::move(mesh);

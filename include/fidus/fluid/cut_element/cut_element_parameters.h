@@ -60,6 +60,8 @@ namespace Fidus
     double nitsche = 100.;
     /// The ghost penalties of the velocity and the pressure.
     double ghost_velocity = 1e-3, ghost_pressure = 1e-3;
+    /// Where the iterative solver starts: 'previous solve' or 'zero'.
+    std::string initial_guess = "previous solve";
   };
 } // namespace Fidus
 

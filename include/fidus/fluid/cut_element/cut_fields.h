@@ -13,7 +13,8 @@ namespace Fidus
 
   /**
    * The fields of one CutStokesInclusion solve, kept for output
-   * (CutStokesInclusion::Settings::keep_fields): the cut mesh with its
+   * (CutStokesInclusion::Settings::keep_fields) and as the next solve's
+   * initial guess (CutInitialGuess): the cut mesh with its
    * cells' placements, the DoFs of the Taylor-Hood field (nothing inside
    * the particles), and the fluid unknowns of the solution with the
    * constraints applied. In the solver's box of unit cells.
@@ -32,6 +33,15 @@ namespace Fidus
     std::vector<bool> is_pressure;
     /// The pressure's mean over the fluid.
     double fluid_pressure = 0.;
+    /// The particles' centres as the solve was given them.
+    std::vector<Point<dim>> centers;
+    /// The particles' rigid unknowns, particle by particle (U, then omega).
+    std::vector<double> rigid;
+    /// The shear rate solved for, and whether the flow is proportional to
+    /// it (no external force on any particle): the next solve's initial
+    /// guess (CutInitialGuess) scales by the ratio of the rates.
+    double shear_rate   = 0.;
+    bool   proportional = true;
   };
 } // namespace Fidus
 

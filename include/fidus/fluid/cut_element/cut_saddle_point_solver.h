@@ -94,6 +94,12 @@ namespace Fidus
       unsigned int setup_iterations = 0;
       /// Wall seconds: AMG setups and W; the FGMRES iterations.
       double setup_seconds = 0., solve_seconds = 0.;
+      /// Of setup_seconds: copying the blocks; the pressure Schur
+      /// complement's preconditioner (with the gap Laplacian's AMG); the
+      /// velocity block's multigrid or AMG.
+      double blocks_seconds = 0., pressure_seconds = 0., velocity_seconds = 0.;
+      /// ||b - matrix x0|| / ||b|| of the start x0.
+      double initial_residual = 1.;
     };
 
     /**
@@ -109,15 +115,19 @@ namespace Fidus
                          CutVelocityMultigrid<dim>  *multigrid = nullptr);
 
     /**
-     * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b|| from x = 0.
-     * Throws std::runtime_error, naming the iterations and the residual
-     * reached, if that takes more than @p max_iterations.
+     * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b||, from
+     * x = 0, or with @p from_x from the @p x given (from zero instead if
+     * its residual is not below ||b||: a guess worse than none). The
+     * tolerance is the same either way, so the answer is. Throws
+     * std::runtime_error, naming the iterations and the residual reached,
+     * if that takes more than @p max_iterations.
      */
     Statistics
     solve(Vector<double>       &x,
           const Vector<double> &b,
           const double          tolerance,
-          const unsigned int    max_iterations);
+          const unsigned int    max_iterations,
+          const bool            from_x = false);
 
     /// The preconditioner: dst = P^-1 src.
     void

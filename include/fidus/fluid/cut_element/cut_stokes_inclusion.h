@@ -203,6 +203,11 @@ namespace Fidus
       /// Keep the mesh, the DoFs and the solution for output
       /// (Result::fields).
       bool keep_fields = false;
+      /// The previous solve's fields (Result::fields of a solve with
+      /// keep_fields), from which the iterative solver starts
+      /// (CutInitialGuess); null, or a different box or number of
+      /// particles: it starts from zero. The direct solver ignores it.
+      std::shared_ptr<const CutFields<dim>> initial_guess;
     };
 
     /// What one solve gives.
@@ -256,6 +261,12 @@ namespace Fidus
       unsigned int n_iterations = 0, n_setup_iterations = 0;
       /// Wall seconds of the whole solve (setup, assembly, factorisation).
       double seconds = 0.;
+      /// The iterative solver's initial residual over the right-hand
+      /// side's (1 from zero; below it from Settings::initial_guess).
+      double initial_residual = 1.;
+      /// Whether the iterative solver solved (n_iterations may be 0 when
+      /// its start meets the tolerance).
+      bool iterative = false;
       /// Wall seconds of its stages: the mesh (built and its cells
       /// placed), the DoFs (constraints, ghost-penalty faces, sparsity
       /// pattern, matrices allocated), the assembly (cells, ghost
@@ -269,6 +280,9 @@ namespace Fidus
       {
         double mesh = 0., dofs = 0., assembly = 0., solve = 0., measure = 0.;
         double fgmres = 0.;
+        /// Of solve, the iterative solver's set-up: the blocks, the
+        /// pressure's preconditioner, the velocity's.
+        double blocks = 0., pressure = 0., velocity = 0.;
       } stage_seconds;
       /// With Settings::keep_fields, the mesh, DoFs and solution (else
       /// null).
