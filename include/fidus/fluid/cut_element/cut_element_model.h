@@ -117,8 +117,8 @@ namespace Fidus
     unsigned long long last_cells = 0, last_dofs = 0;
     double             solved_shear_rate = 0.;
 
-    /// The fields of the last solve (kept with field output only), and
-    /// their writer.
+    /// The fields of the last solve (kept with field output, and as the
+    /// next solve's start with the iterative solver), and their writer.
     std::shared_ptr<const CutFields<dim>> last_fields;
 
     /// The sub-grid lubrication solved with the flow (null: none).
