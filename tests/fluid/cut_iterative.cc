@@ -166,21 +166,29 @@ namespace
                 200.);
   }
 
+  /// Three discs between sliding walls, the first one at x = @p x0,
+  /// across the periodic face; level 4 and two band levels.
+  Fidus::CutStokesInclusion<2>::Settings
+  three_discs(const double x0)
+  {
+    using Solver = Fidus::CutStokesInclusion<2>;
+    Solver::Settings s;
+    s.boundary          = Solver::Boundary::sliding_walls;
+    s.particles         = {{dealii::Point<2>(x0, 0.4), 0.08, {}},
+                           {dealii::Point<2>(0.35, 0.62), 0.1, {}},
+                           {dealii::Point<2>(0.7, 0.3), 0.06, {}}};
+    s.global_level      = 4;
+    s.band_levels       = 2;
+    s.gap_cells         = 2.;
+    s.quadrature_points = 8;
+    return s;
+  }
+
   /// Three discs between sliding walls, one across the periodic face.
   void
   sliding_walls_2d()
   {
-    using Solver = Fidus::CutStokesInclusion<2>;
-    Solver::Settings s;
-    s.boundary                     = Solver::Boundary::sliding_walls;
-    s.particles                    = {{dealii::Point<2>(0.02, 0.4), 0.08, {}},
-                                      {dealii::Point<2>(0.35, 0.62), 0.1, {}},
-                                      {dealii::Point<2>(0.7, 0.3), 0.06, {}}};
-    s.global_level                 = 4;
-    s.band_levels                  = 2;
-    s.gap_cells                    = 2.;
-    s.quadrature_points            = 8;
-    const auto [direct, iterative] = both<2>(s);
+    const auto [direct, iterative] = both<2>(three_discs(0.02));
     check_range("2D sliding walls, three discs: |omega, U difference| / "
                 "(g a)",
                 rigid_difference(direct, iterative, 0.1),
@@ -448,19 +456,11 @@ namespace
   void
   initial_guess_2d()
   {
-    using Solver = Fidus::CutStokesInclusion<2>;
-    Solver::Settings s;
-    s.boundary          = Solver::Boundary::sliding_walls;
-    s.particles         = {{dealii::Point<2>(0.003, 0.4), 0.08, {}},
-                           {dealii::Point<2>(0.35, 0.62), 0.1, {}},
-                           {dealii::Point<2>(0.7, 0.3), 0.06, {}}};
-    s.global_level      = 4;
-    s.band_levels       = 2;
-    s.gap_cells         = 2.;
-    s.quadrature_points = 8;
-    s.linear_solver     = Solver::LinearSolver::iterative;
-    s.keep_fields       = true;
-    const auto first    = Solver::solve(s);
+    using Solver       = Fidus::CutStokesInclusion<2>;
+    Solver::Settings s = three_discs(0.003);
+    s.linear_solver    = Solver::LinearSolver::iterative;
+    s.keep_fields      = true;
+    const auto first   = Solver::solve(s);
 
     // The same configuration again: the previous field, read at the same
     // support points, is the solution.
