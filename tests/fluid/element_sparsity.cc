@@ -113,7 +113,8 @@ namespace
       list.push_back(n_fluid + e);
     add(list);
 
-    SparsityPattern expected, built;
+    SparsityPattern   expected;
+    Fidus::RowPattern built;
     expected.copy_from(dsp);
     elements.build(built);
     unsigned int differing_rows = 0;

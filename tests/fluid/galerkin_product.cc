@@ -71,7 +71,8 @@ namespace
   check(const std::string &name, const bool symmetric, std::mt19937 &random)
   {
     const unsigned int   n = 300, m = 70;
-    SparsityPattern      a_pattern, p_pattern, c_pattern;
+    SparsityPattern      a_pattern, p_pattern;
+    Fidus::RowPattern    c_pattern;
     SparseMatrix<double> a, p, c;
     FullMatrix<double>   a_dense, p_dense;
     random_matrix(n, n, 12, {}, {}, symmetric, random, a_pattern, a, a_dense);

@@ -7,85 +7,12 @@
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
-#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
 namespace Fidus
 {
-  namespace
-  {
-    /**
-     * One row of a sparse matrix seen through a column map: the columns j
-     * of its entries with column(j) >= 0, as column(j). A range that
-     * SparsityPattern::copy_from reads (it counts a row, then copies it).
-     */
-    template <typename Column>
-    struct MappedRow
-    {
-      using Entry = SparseMatrix<double>::const_iterator;
-
-      struct const_iterator
-      {
-        using iterator_category = std::forward_iterator_tag;
-        using value_type        = unsigned int;
-        using difference_type   = std::ptrdiff_t;
-        using pointer           = const unsigned int *;
-        using reference         = unsigned int;
-
-        Entry         at, last;
-        const Column *column;
-
-        /// Move past the entries that the map leaves out.
-        void
-        skip()
-        {
-          while (at != last && (*column)(at->column()) < 0)
-            ++at;
-        }
-        unsigned int
-        operator*() const
-        {
-          return (*column)(at->column());
-        }
-        const_iterator &
-        operator++()
-        {
-          ++at;
-          skip();
-          return *this;
-        }
-        bool
-        operator==(const const_iterator &other) const
-        {
-          return at == other.at;
-        }
-        bool
-        operator!=(const const_iterator &other) const
-        {
-          return !(*this == other);
-        }
-      };
-
-      Entry         first, last;
-      const Column *column;
-
-      const_iterator
-      begin() const
-      {
-        const_iterator i{first, last, column};
-        i.skip();
-        return i;
-      }
-      const_iterator
-      end() const
-      {
-        return const_iterator{last, last, column};
-      }
-    };
-  } // namespace
-
   template <int dim>
   void
   CutSaddlePointSolver<dim>::extract_blocks(const Layout &layout)
@@ -94,24 +21,22 @@ namespace Fidus
                        n_v = rigid.size();
 
     // The block of the system with the rows @p rows (numbered in that
-    // order) and the columns that @p column numbers (-1: left out).
-    // SparsityPattern::copy_from reads the block's rows straight from the
-    // system's (MappedRow), then the values go in the pattern's order: a
+    // order) and the columns that @p column numbers (-1: left out). The
+    // pattern is read straight from the system's rows, on the threads
+    // (RowPattern), then the values go in the pattern's order: a
     // DynamicSparsityPattern in between cost a tenth of a 3D solve, and
     // lists of the rows' columns raised its peak memory.
     const auto extract = [&](const std::vector<unsigned int> &rows,
                              const auto                      &column,
                              const unsigned int               n_columns,
-                             SparsityPattern                 &pattern,
+                             RowPattern                      &pattern,
                              SparseMatrix<double>            &block) {
-      using Row = MappedRow<std::decay_t<decltype(column)>>;
-      std::vector<Row> views;
-      views.reserve(rows.size());
-      for (const unsigned int r : rows)
-        views.push_back(Row{matrix.begin(r), matrix.end(r), &column});
-      pattern.copy_from(rows.size(), n_columns, views.begin(), views.end());
-      views.clear();
-      views.shrink_to_fit();
+      pattern
+        .fill(rows.size(), n_columns, [&](const unsigned int k, const auto &f) {
+          for (auto it = matrix.begin(rows[k]); it != matrix.end(rows[k]); ++it)
+            if (column(it->column()) >= 0)
+              f(column(it->column()));
+        });
       block.reinit(pattern);
       // The values, on the machine's threads (each row is its own).
       on_row_ranges(rows.size(),
@@ -143,25 +68,37 @@ namespace Fidus
     velocity_and_rigid.insert(velocity_and_rigid.end(),
                               rigid.begin(),
                               rigid.end());
-    // With the multigrid, K = [A_uu A_uV; A_Vu A_VV] (velocities first) is
-    // its finest level; otherwise A_uu goes to the AMG.
+    // K's numbering: velocities first, then the rigid unknowns.
+    const auto of_k = [&](const unsigned int j) {
+      return layout.kind[j] == 0 ? int(local[j]) :
+             layout.kind[j] == 2 ? int(n_u + local[j]) :
+                                   -1;
+    };
+    // With the multigrid, K = [A_uu A_uV; A_Vu A_VV] is its finest level;
+    // otherwise A_uu goes to the AMG.
     if (multigrid)
-      extract(
-        velocity_and_rigid,
-        [&](const unsigned int j) {
-          return layout.kind[j] == 0 ? int(local[j]) :
-                 layout.kind[j] == 2 ? int(n_u + local[j]) :
-                                       -1;
-        },
-        n_u + n_v,
-        velocity_sparsity,
-        velocity_matrix);
+      extract(velocity_and_rigid,
+              of_k,
+              n_u + n_v,
+              velocity_sparsity,
+              velocity_matrix);
     else
       extract(velocity, of_kind(0), n_u, velocity_sparsity, velocity_matrix);
     // B^T, rows numbered velocities first, then rigid unknowns; A_Vu.
     extract(velocity_and_rigid, of_kind(1), n_p, coupling_sparsity, coupling);
     if (!multigrid)
       extract(rigid, of_kind(0), n_u, rigid_sparsity, rigid_coupling);
+    // With the multigrid, the rest of the system: the blocks then hold all
+    // of it, and the system can go.
+    if (multigrid)
+      {
+        extract(pressure, of_k, n_u + n_v, divergence_sparsity, divergence);
+        extract(pressure,
+                of_kind(1),
+                n_p,
+                pressure_block_sparsity,
+                pressure_block);
+      }
   }
 
 
@@ -429,10 +366,11 @@ namespace Fidus
 
   template <int dim>
   CutSaddlePointSolver<dim>::CutSaddlePointSolver(
-    const SparseMatrix<double> &matrix,
-    const SparseMatrix<double> &pressure_mass,
-    const Layout               &layout,
-    CutVelocityMultigrid<dim>  *multigrid)
+    const SparseMatrix<double>  &matrix,
+    const SparseMatrix<double>  &pressure_mass,
+    const Layout                &layout,
+    CutVelocityMultigrid<dim>   *multigrid,
+    const std::function<void()> &release)
     : matrix(matrix)
     , multigrid(multigrid)
   {
@@ -461,22 +399,23 @@ namespace Fidus
     statistics.blocks_seconds = lap();
 
     build_pressure_schur(pressure_mass, layout);
-
-    mean = layout.pressure_mean;
+    pressure_jacobi.initialize(pressure_schur);
+    build_gap_laplacian(layout);
+    mean                        = layout.pressure_mean;
+    statistics.pressure_seconds = lap();
+    // Everything read from the system is in the blocks now.
+    if (multigrid && release)
+      release();
 
     // The multigrid on K; or the AMG of the velocity block, with the rigid
     // motions about the box's centre as near-null space: the viscous
     // operator does not see them, and translations alone leave the coarse
     // spaces without rotations.
-    statistics.pressure_seconds = lap();
     if (multigrid)
       multigrid->initialize(velocity_matrix, velocity, n_v);
     else
       setup_velocity_amg(layout);
     statistics.velocity_seconds = lap();
-    pressure_jacobi.initialize(pressure_schur);
-    build_gap_laplacian(layout);
-    statistics.pressure_seconds += lap();
 
     if (!multigrid)
       compute_rigid_schur();
@@ -488,7 +427,49 @@ namespace Fidus
     coupling_product.reinit(n_u + n_v);
     r_v.reinit(n_v);
     z_v.reinit(n_v);
+    if (multigrid)
+      {
+        x_k.reinit(n_u + n_v);
+        y_k.reinit(n_u + n_v);
+        x_p.reinit(n_p);
+        y_p.reinit(n_p);
+      }
     statistics.setup_seconds = timer.wall_time();
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::system_vmult(Vector<double>       &dst,
+                                          const Vector<double> &src) const
+  {
+    if (!multigrid)
+      matrix.vmult(dst, src);
+    else
+      {
+        // [K B^T; B P] [x_K; x_p] by the blocks, in the system's numbering.
+        const unsigned int n_u = velocity.size();
+        for (unsigned int k = 0; k < n_u; ++k)
+          x_k[k] = src[velocity[k]];
+        for (unsigned int k = 0; k < rigid.size(); ++k)
+          x_k[n_u + k] = src[rigid[k]];
+        for (unsigned int k = 0; k < pressure.size(); ++k)
+          x_p[k] = src[pressure[k]];
+        velocity_matrix.vmult(y_k, x_k);
+        coupling.vmult_add(y_k, x_p);
+        divergence.vmult(y_p, x_k);
+        pressure_block.vmult_add(y_p, x_p);
+        for (unsigned int k = 0; k < n_u; ++k)
+          dst[velocity[k]] = y_k[k];
+        for (unsigned int k = 0; k < rigid.size(); ++k)
+          dst[rigid[k]] = y_k[n_u + k];
+        for (unsigned int k = 0; k < pressure.size(); ++k)
+          dst[pressure[k]] = y_p[k];
+      }
+    // The rank-one term that fixes the pressure's mean.
+    if (mean.size() > 0)
+      dst.add(-(mean * src), mean);
   }
 
 
@@ -548,7 +529,7 @@ namespace Fidus
                                    const bool            from_x)
   {
     Timer        timer;
-    const System system{matrix, mean};
+    const System system{*this};
     const double b_norm       = b.l2_norm();
     bool         start_from_x = from_x;
     if (start_from_x)

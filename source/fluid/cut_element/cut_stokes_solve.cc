@@ -250,13 +250,14 @@ namespace Fidus
     // Peak bytes of a whole solve (the system, its pattern, the scaled
     // copies, the solver and its vectors), measured on one rank
     // (doc/theory/cut_element.md, "Memory"). The iterative solver's peak
-    // follows the pattern's entries: 40.6-43.8 bytes per entry from one
-    // sphere (240 entries per unknown) to a dense suspension (700; per
-    // unknown 9.3 to 29 KB). Before the pattern, a bound per unknown below
+    // follows the pattern's entries: it is reached while the system and
+    // its blocks are both held, 33-39 bytes per entry from a dense
+    // suspension (600-700 entries per unknown) to one sphere (240; per
+    // unknown 9 to 23 KB). Before the pattern, a bound per unknown below
     // all of them. The direct solver's factor fills in: 8-11 KB per
     // unknown in 2D, 56-68 KB in 3D. The lower ends, so that a solve is
     // stopped only when it would clearly not fit.
-    const double per_unit = with_pattern ? 38. :
+    const double per_unit = with_pattern ? 30. :
                             iterate      ? 8e3 :
                             dim == 2     ? 7e3 :
                                            50e3;
@@ -341,11 +342,14 @@ namespace Fidus
   CutStokesSolve<dim>::setup_system()
   {
     matrix.reinit(sparsity);
-    // Between sliding walls, the unconstrained matrix too: the walls'
-    // stress is the residual of their DoFs' rows, which the constrained
-    // matrix no longer has (the pattern holds the unconstrained entries).
+    // Between sliding walls, the unconstrained rows of the walls too: the
+    // walls' stress is the residual of their DoFs' rows, which the
+    // constrained matrix no longer has.
     if (periodic)
-      unconstrained.reinit(sparsity);
+      {
+        make_wall_rows();
+        unconstrained.reinit(wall_sparsity);
+      }
     // The iterative solver's pressure preconditioner takes the pressure
     // mass matrix over the fluid, on the pressures' own pattern.
     iterative = uses_iterative_solver();
@@ -577,13 +581,25 @@ namespace Fidus
           surfaces.emplace_back(b.center, b.radius);
         multigrid->set_surfaces(surfaces);
       }
+    // The start reads the constrained rows' diagonal, before the system
+    // goes.
+    const bool guessed = initial_guess(layout, scaled_rhs, scaled_solution);
+    // With the multigrid, the solver keeps the system in its blocks, and
+    // the system itself is freed before the multigrid's levels are built:
+    // the system and its blocks side by side were a third of the peak.
     CutSaddlePointSolver<dim> solver(matrix,
                                      pressure_mass,
                                      layout,
-                                     multigrid.get());
+                                     multigrid.get(),
+                                     [this]() {
+                                       matrix.clear();
+                                       sparsity.reinit(0, 0, 0);
+                                       pressure_mass.clear();
+                                       mass_sparsity.reinit(0, 0, 0);
+                                       MemoryUsage::release_free_memory();
+                                     });
     MemoryUsage::release_free_memory();
-    const bool guessed    = initial_guess(layout, scaled_rhs, scaled_solution);
-    const auto statistics = solver.solve(scaled_solution,
+    const auto statistics         = solver.solve(scaled_solution,
                                          scaled_rhs,
                                          s.iterative_tolerance,
                                          s.iterative_max_iterations,
@@ -596,7 +612,7 @@ namespace Fidus
     result.stage_seconds.blocks   = statistics.blocks_seconds;
     result.stage_seconds.pressure = statistics.pressure_seconds;
     result.stage_seconds.velocity = statistics.velocity_seconds;
-    apply_system(residual, scaled_solution);
+    solver.system_vmult(residual, scaled_solution);
     residual.sadd(-1., scaled_rhs);
   }
 

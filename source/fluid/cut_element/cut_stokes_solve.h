@@ -262,6 +262,13 @@ namespace Fidus
     void
     wall_stress();
 
+    /// For sliding walls, wall_phi, wall_rows and the pattern of the
+    /// unconstrained matrix's rows that wall_stress() reads (a small part
+    /// of the system's: a whole unconstrained copy was a fifth of a dense
+    /// suspension's peak memory).
+    void
+    make_wall_rows();
+
     /// For the exact inclusion, the errors of the particle's motion and
     /// stresslet.
     void
@@ -499,14 +506,22 @@ namespace Fidus
     /// DoF indices of a cell and of its neighbour.
     std::vector<types::global_dof_index> dofs, neighbour_dofs;
 
-    SparsityPattern      sparsity;
+    RowPattern           sparsity;
     SparseMatrix<double> matrix;
-    /// Between sliding walls, the matrix without the constraints.
+    /// Between sliding walls, the rows of the matrix without the
+    /// constraints that the walls' stress reads (wall_rows; the others
+    /// hold their diagonal only, zero), on their own pattern.
+    SparsityPattern      wall_sparsity;
     SparseMatrix<double> unconstrained;
+    /// Between sliding walls, the test functions of the walls' stress
+    /// (side 0: y = 0, 1: y = H; one per component) and the rows where
+    /// any is not zero.
+    std::array<std::array<Vector<double>, dim>, 2> wall_phi;
+    std::vector<bool>                              wall_rows;
     /// Whether the system is solved iteratively.
     bool iterative = false;
     /// The pressure mass matrix over the fluid (iterative solver only).
-    SparsityPattern      mass_sparsity;
+    RowPattern           mass_sparsity;
     SparseMatrix<double> pressure_mass;
     /// The pressure mass of the constant pressure, m_i = int phi_i / eta
     /// over the fluid (zero but on the unconstrained pressures), and m'

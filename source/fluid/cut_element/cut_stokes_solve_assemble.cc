@@ -22,17 +22,23 @@ namespace Fidus
 {
   namespace
   {
-    /// matrix(dofs[i], dofs[j]) += local(i, j) for every entry, with the
-    /// columns of each row in ascending order: SparseMatrix::add then walks
-    /// the row once instead of searching it for every entry (a tenth of a
-    /// dense 3D suspension's solve). Zeros are added too, as
-    /// SparseMatrix::add(indices, full_matrix) does.
+    /// matrix(dofs[i], dofs[j]) += local(i, j) for every entry of the rows
+    /// dofs[i] that @p rows marks, with the columns of each row in
+    /// ascending order: SparseMatrix::add then walks the row once instead
+    /// of searching it for every entry (a tenth of a dense 3D suspension's
+    /// solve). Zeros are added too, as SparseMatrix::add(indices,
+    /// full_matrix) does.
     void
     add_sorted(SparseMatrix<double>                       &matrix,
                const std::vector<types::global_dof_index> &dofs,
-               const FullMatrix<double>                   &local)
+               const FullMatrix<double>                   &local,
+               const std::vector<bool>                    &rows)
     {
-      const unsigned int        n = dofs.size();
+      const unsigned int n = dofs.size();
+      if (std::none_of(dofs.begin(), dofs.end(), [&](const auto i) {
+            return rows[i];
+          }))
+        return;
       std::vector<unsigned int> order(n);
       for (unsigned int k = 0; k < n; ++k)
         order[k] = k;
@@ -44,11 +50,12 @@ namespace Fidus
       for (unsigned int k = 0; k < n; ++k)
         columns[k] = dofs[order[k]];
       for (unsigned int i = 0; i < n; ++i)
-        {
-          for (unsigned int k = 0; k < n; ++k)
-            values[k] = local(i, order[k]);
-          matrix.add(dofs[i], n, columns.data(), values.data(), false, true);
-        }
+        if (rows[dofs[i]])
+          {
+            for (unsigned int k = 0; k < n; ++k)
+              values[k] = local(i, order[k]);
+            matrix.add(dofs[i], n, columns.data(), values.data(), false, true);
+          }
     }
   } // namespace
 
@@ -252,7 +259,7 @@ namespace Fidus
                                              pressure_dof_indices,
                                              pressure_mass);
     if (periodic)
-      add_sorted(unconstrained, copy.ext_dofs, copy.local);
+      add_sorted(unconstrained, copy.ext_dofs, copy.local, wall_rows);
     // The cells carry no load: the right-hand side comes from the
     // constraints' inhomogeneities (the imposed velocities).
     constraints.distribute_local_to_global(copy.local,
@@ -460,7 +467,7 @@ namespace Fidus
              FaceCopy &cp) { assemble_face(*ghost, sc, cp); },
       [this, &face_rhs](const FaceCopy &cp) {
         if (periodic)
-          add_sorted(unconstrained, cp.face_dofs, cp.face_matrix);
+          add_sorted(unconstrained, cp.face_dofs, cp.face_matrix, wall_rows);
         // With the right-hand side: a face next to the box's boundary
         // couples to DoFs with imposed velocity, whose values move to it.
         face_rhs.reinit(cp.face_dofs.size());

@@ -167,6 +167,52 @@ namespace Fidus
 
   template <int dim>
   void
+  CutStokesSolve<dim>::make_wall_rows()
+  {
+    // Phi for each wall and component a: 1 at the wall's DoFs of component
+    // a (both ends of the periodic wall included), the hanging DoFs
+    // interpolated, which reaches the first layer of cells only.
+    AffineConstraints<double> hanging;
+    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+    hanging.close();
+    const auto &support = taylor_hood.get_unit_support_points();
+    for (auto &wall : wall_phi)
+      for (auto &component : wall)
+        component.reinit(n_total);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (unsigned int side = 0; side < 2; ++side)
+        if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
+          {
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < n_local; ++i)
+              {
+                const unsigned int a =
+                  taylor_hood.system_to_component_index(i).first;
+                if (a < dim && std::abs(support[i][1] - side) < 1e-12)
+                  wall_phi[side][a][dofs[i]] = 1.;
+              }
+          }
+    wall_rows.assign(n_total, false);
+    for (auto &wall : wall_phi)
+      for (auto &component : wall)
+        {
+          hanging.distribute(component);
+          for (unsigned int i = 0; i < n_total; ++i)
+            if (component[i] != 0.)
+              wall_rows[i] = true;
+        }
+    // Those rows of the system's pattern (which holds the unconstrained
+    // entries); the other rows get their diagonal alone.
+    std::vector<std::vector<unsigned int>> rows(n_total);
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (wall_rows[i])
+        for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
+          rows[i].push_back(it->column());
+    wall_sparsity.copy_from(n_total, n_total, rows.begin(), rows.end());
+  }
+
+  template <int dim>
+  void
   CutStokesSolve<dim>::wall_stress()
   {
     // The walls' stress, as a rheometer's walls feel it: with Phi a
@@ -185,39 +231,15 @@ namespace Fidus
         periodic ? 0. : std::numeric_limits<double>::quiet_NaN();
     if (!periodic)
       return;
-    AffineConstraints<double> hanging;
-    DoFTools::make_hanging_node_constraints(dof_handler, hanging);
-    hanging.close();
     Vector<double> residual(n_total);
     unconstrained.vmult(residual, solution);
-    // Phi for each wall (side 0: y = 0, 1: y = 1) and component a, from
-    // one pass over the cells.
-    const auto &support = taylor_hood.get_unit_support_points();
-    std::array<std::array<Vector<double>, dim>, 2> phi;
-    for (auto &wall : phi)
-      for (auto &component : wall)
-        component.reinit(n_total);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      for (unsigned int side = 0; side < 2; ++side)
-        if (cell->active_fe_index() == 0 && cell->at_boundary(2 + side))
-          {
-            cell->get_dof_indices(dofs);
-            for (unsigned int i = 0; i < n_local; ++i)
-              {
-                const unsigned int a =
-                  taylor_hood.system_to_component_index(i).first;
-                if (a < dim && std::abs(support[i][1] - side) < 1e-12)
-                  phi[side][a][dofs[i]] = 1.;
-              }
-          }
     const double area = dim == 2 ? side(0) : side(0) * side(2);
     for (unsigned int side = 0; side < 2; ++side)
       for (unsigned int a = 0; a < dim; ++a)
         {
-          hanging.distribute(phi[side][a]);
           // sigma e_y: the force on the top wall (n = e_y), minus the
           // force on the bottom one, over the wall's area.
-          const double force = phi[side][a] * residual / area;
+          const double force = wall_phi[side][a] * residual / area;
           if (side == 1)
             result.top_wall_stress[a] = force;
           else
@@ -300,6 +322,8 @@ namespace Fidus
   template void
   CutStokesSolve<2>::wall_stress();
   template void
+  CutStokesSolve<2>::make_wall_rows();
+  template void
   CutStokesSolve<2>::exact_inclusion_errors();
   template void
   CutStokesSolve<2>::keep_fields();
@@ -313,6 +337,8 @@ namespace Fidus
   CutStokesSolve<3>::measure_solution();
   template void
   CutStokesSolve<3>::wall_stress();
+  template void
+  CutStokesSolve<3>::make_wall_rows();
   template void
   CutStokesSolve<3>::exact_inclusion_errors();
   template void

@@ -251,7 +251,7 @@ namespace Fidus
         // A_{l+1} = P^T A_l P. Unknowns that reach no fluid (inside a
         // particle) or are constrained have empty rows: a unit diagonal
         // keeps them decoupled and zero.
-        coarse_pattern.push_back(std::make_unique<SparsityPattern>());
+        coarse_pattern.push_back(std::make_unique<RowPattern>());
         coarse.push_back(std::make_unique<SparseMatrix<double>>());
         galerkin_product(level_matrix(l),
                          *prolongation.back(),

@@ -36,7 +36,7 @@ namespace Fidus
   }
 
   void
-  ElementSparsity::build(SparsityPattern &pattern) const
+  ElementSparsity::build(RowPattern &pattern) const
   {
     const std::size_t n_elements = (starts.size() - 1) / 3;
     const auto        list = [&](const std::size_t e, const unsigned int k) {
@@ -132,6 +132,6 @@ namespace Fidus
                       });
       }
 
-    pattern_from_rows(pattern, n, n, row_columns, col_start);
+    pattern.fill_from_rows(n, n, row_columns, col_start);
   }
 } // namespace Fidus

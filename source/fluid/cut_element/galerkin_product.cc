@@ -143,7 +143,7 @@ namespace Fidus
   void
   galerkin_product(const SparseMatrix<double> &a,
                    const SparseMatrix<double> &p,
-                   SparsityPattern            &pattern,
+                   RowPattern                 &pattern,
                    SparseMatrix<double>       &c)
   {
     // The intermediate products are released before C is allocated.
@@ -168,11 +168,10 @@ namespace Fidus
     }();
 
     // With every diagonal entry, as the multigrid needs.
-    pattern_from_rows(pattern,
-                      product.n_rows,
-                      product.n_cols,
-                      product.column,
-                      product.start);
+    pattern.fill_from_rows(product.n_rows,
+                           product.n_cols,
+                           product.column,
+                           product.start);
     c.reinit(pattern);
     on_row_ranges(product.n_rows,
                   1,

@@ -11,6 +11,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
+#include <fidus/fluid/cut_element/row_pattern.h>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -105,14 +107,23 @@ namespace Fidus
     /**
      * Set up for the (scaled) system @p matrix, with the pressure mass
      * matrix @p pressure_mass (same numbering; only its pressure rows are
-     * read). Both must outlive the object. With @p multigrid, one V-cycle
-     * of it stands for A_uu^-1 (it is initialised here); without, one ML
-     * AMG cycle.
+     * read). With @p multigrid, one V-cycle of it stands for A_uu^-1 (it is
+     * initialised here), and the solver keeps the system as its blocks
+     * (K, B^T, B and the pressure block, which the preconditioner needs
+     * anyway) and multiplies by them: it reads neither @p matrix nor
+     * @p pressure_mass after the constructor, and the caller may free them
+     * before the multigrid's levels are built (see @p release). Without,
+     * one ML AMG cycle, and @p matrix must outlive the object.
+     *
+     * @p release, called (if given) once the blocks are copied and before
+     * the multigrid is set up, is where the caller frees @p matrix: the
+     * system and its copies in blocks were the solve's peak memory.
      */
-    CutSaddlePointSolver(const SparseMatrix<double> &matrix,
-                         const SparseMatrix<double> &pressure_mass,
-                         const Layout               &layout,
-                         CutVelocityMultigrid<dim>  *multigrid = nullptr);
+    CutSaddlePointSolver(const SparseMatrix<double>  &matrix,
+                         const SparseMatrix<double>  &pressure_mass,
+                         const Layout                &layout,
+                         CutVelocityMultigrid<dim>   *multigrid = nullptr,
+                         const std::function<void()> &release   = {});
 
     /**
      * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b||, from
@@ -132,6 +143,11 @@ namespace Fidus
     /// The preconditioner: dst = P^-1 src.
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
+
+    /// dst = (matrix - m m^T) src: the system FGMRES solves (by its blocks
+    /// with the multigrid).
+    void
+    system_vmult(Vector<double> &dst, const Vector<double> &src) const;
 
   private:
     /// Copies the blocks of the system that the preconditioner needs: K or
@@ -180,15 +196,19 @@ namespace Fidus
     void
     build_gap_laplacian(const Layout &layout);
 
+    /// The system; not read after the constructor with the multigrid.
     const SparseMatrix<double> &matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and
     /// each unknown's index within its kind.
     std::vector<unsigned int> velocity, pressure, rigid, local;
-    SparsityPattern velocity_sparsity, pressure_sparsity, coupling_sparsity,
-      rigid_sparsity;
-    /// A_uu; S; B^T (rows: velocities, then rigid unknowns); A_Vu.
+    RowPattern velocity_sparsity, coupling_sparsity, rigid_sparsity,
+      divergence_sparsity, pressure_block_sparsity;
+    SparsityPattern pressure_sparsity;
+    /// A_uu (K with the multigrid); S; B^T (rows: velocities, then rigid
+    /// unknowns); A_Vu; with the multigrid, B (columns: velocities, then
+    /// rigid unknowns) and the system's pressure block.
     SparseMatrix<double> velocity_matrix, pressure_schur, coupling,
-      rigid_coupling;
+      rigid_coupling, divergence, pressure_block;
     TrilinosWrappers::SparseMatrix           velocity_trilinos;
     TrilinosWrappers::PreconditionAMG        velocity_amg;
     PreconditionJacobi<SparseMatrix<double>> pressure_jacobi;
@@ -209,27 +229,23 @@ namespace Fidus
     TrilinosWrappers::PreconditionAMG gap_amg;
     double                            gap_weight = 0.;
     mutable Vector<double>            r_g, z_g;
-    /// The system as FGMRES multiplies by it: the matrix and, without a
-    /// pinned pressure, the rank-one term that fixes the mean.
+    /// The system as FGMRES multiplies by it (system_vmult()).
     struct System
     {
-      const SparseMatrix<double> &matrix;
-      /// m; empty with a pinned pressure.
-      const Vector<double> &mean;
+      const CutSaddlePointSolver &solver;
       void
       vmult(Vector<double> &dst, const Vector<double> &src) const
       {
-        matrix.vmult(dst, src);
-        if (mean.size() > 0)
-          dst.add(-(mean * src), mean);
+        solver.system_vmult(dst, src);
       }
     };
 
     /// m (see the class's documentation), or empty.
     Vector<double> mean;
 
-    /// Work vectors of vmult.
-    mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product, r_v, z_v;
+    /// Work vectors of vmult and system_vmult.
+    mutable Vector<double> r_u, y_u, r_p, z_p, coupling_product, r_v, z_v, x_k,
+      x_p, y_k, y_p;
   };
 } // namespace Fidus
 

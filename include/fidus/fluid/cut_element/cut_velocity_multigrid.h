@@ -10,6 +10,7 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/cut_element/cut_cell_block_jacobi.h>
+#include <fidus/fluid/cut_element/row_pattern.h>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -148,7 +149,7 @@ namespace Fidus
     std::vector<std::unique_ptr<SparsityPattern>>      prolongation_pattern;
     std::vector<std::unique_ptr<SparseMatrix<double>>> prolongation;
     /// coarse[l - 1]: the operator of level l >= 1.
-    std::vector<std::unique_ptr<SparsityPattern>>      coarse_pattern;
+    std::vector<std::unique_ptr<RowPattern>>           coarse_pattern;
     std::vector<std::unique_ptr<SparseMatrix<double>>> coarse;
     std::vector<std::unique_ptr<Smoother>>             smoother;
     SparseDirectUMFPACK                                coarsest;

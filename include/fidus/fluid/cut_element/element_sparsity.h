@@ -3,7 +3,7 @@
 
 #include <cstddef>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/sparsity_pattern.h>
+#include <fidus/fluid/cut_element/row_pattern.h>
 #include <vector>
 
 namespace Fidus
@@ -41,7 +41,7 @@ namespace Fidus
 
     /// Fill @p pattern with the couplings of all elements added.
     void
-    build(SparsityPattern &pattern) const;
+    build(RowPattern &pattern) const;
 
   private:
     const unsigned int               n;

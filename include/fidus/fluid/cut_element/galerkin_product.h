@@ -2,7 +2,7 @@
 #define fidus_fluid_cut_element_galerkin_product_h
 
 #include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/sparsity_pattern.h>
+#include <fidus/fluid/cut_element/row_pattern.h>
 
 namespace Fidus
 {
@@ -26,7 +26,7 @@ namespace Fidus
   void
   galerkin_product(const SparseMatrix<double> &a,
                    const SparseMatrix<double> &p,
-                   SparsityPattern            &pattern,
+                   RowPattern                 &pattern,
                    SparseMatrix<double>       &c);
 } // namespace Fidus
 

@@ -5,7 +5,6 @@
 #include <cstddef>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
-#include <deal.II/lac/sparsity_pattern.h>
 #include <vector>
 
 namespace Fidus
@@ -37,42 +36,6 @@ namespace Fidus
         tasks += Threads::new_task([&f, first, last]() { f(first, last); });
       }
     tasks.join_all();
-  }
-
-  /**
-   * Fill @p pattern (@p n_rows x @p n_cols) from compressed rows: row i's
-   * columns, in any order, are columns[start[i]] to columns[start[i + 1]]
-   * (exclusive). As SparsityPattern::copy_from does, a square pattern also
-   * gets every diagonal entry.
-   */
-  inline void
-  pattern_from_rows(SparsityPattern                 &pattern,
-                    const unsigned int               n_rows,
-                    const unsigned int               n_cols,
-                    const std::vector<unsigned int> &columns,
-                    const std::vector<std::size_t>  &start)
-  {
-    struct RowView
-    {
-      using const_iterator = const unsigned int *;
-      const unsigned int *first, *last;
-      const_iterator
-      begin() const
-      {
-        return first;
-      }
-      const_iterator
-      end() const
-      {
-        return last;
-      }
-    };
-    std::vector<RowView> views;
-    views.reserve(n_rows);
-    for (unsigned int i = 0; i < n_rows; ++i)
-      views.push_back(
-        {columns.data() + start[i], columns.data() + start[i + 1]});
-    pattern.copy_from(n_rows, n_cols, views.begin(), views.end());
   }
 } // namespace Fidus
 
