@@ -12,7 +12,9 @@
 # (in eta_f gamma_dot), the unknowns and the seconds and peak memory of
 # each run. The cut cases need up to 13 GB (level 5).
 # Env: FD_LEVELS (default "4 5"), CUT_CASES (default "4,0.4 4,0.2 5,0.4";
-# "4,0.1": 530 979 unknowns, 156 FGMRES, 7 minutes and 16 GB), NP (default 2), FIDUS, WORK (keep the runs there).
+# "4,0.1": 530 979 unknowns, 156 FGMRES, 7 minutes; "4,0.05": 880 935
+# unknowns, 195 FGMRES, 15 minutes and 16 GB), NP (default 2), FIDUS, WORK
+# (keep the runs there).
 # Usage: contrib/benchmarks/cut_dense_3d.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"

@@ -251,13 +251,13 @@ namespace Fidus
     // copies, the solver and its vectors), measured on one rank
     // (doc/theory/cut_element.md, "Memory"). The iterative solver's peak
     // follows the pattern's entries: it is reached while the system and
-    // its blocks are both held, 33-39 bytes per entry from a dense
-    // suspension (600-700 entries per unknown) to one sphere (240; per
-    // unknown 9 to 23 KB). Before the pattern, a bound per unknown below
+    // its blocks are both held, 24-34 bytes per entry from a dense
+    // suspension (600-740 entries per unknown) to one sphere (240; per
+    // unknown 8 to 18 KB). Before the pattern, a bound per unknown below
     // all of them. The direct solver's factor fills in: 8-11 KB per
     // unknown in 2D, 56-68 KB in 3D. The lower ends, so that a solve is
     // stopped only when it would clearly not fit.
-    const double per_unit = with_pattern ? 30. :
+    const double per_unit = with_pattern ? 24. :
                             iterate      ? 8e3 :
                             dim == 2     ? 7e3 :
                                            50e3;

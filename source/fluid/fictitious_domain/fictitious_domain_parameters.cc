@@ -219,7 +219,7 @@ namespace Fidus
       "lowered for that mesh to what does, with a warning. Not checked "
       "with the direct solver. With 'Fluid/Model = cut finite element' "
       "every solve is checked the same way, before its system is built "
-      "(30 B per matrix entry with its iterative solver, checked once its "
+      "(24 B per matrix entry with its iterative solver, checked once its "
       "sparsity pattern is known, and 8 KB per unknown before; 7 KB per "
       "unknown in 2D and 50 KB in 3D with its direct one; "
       "doc/theory/cut_element.md, 'Memory').");
