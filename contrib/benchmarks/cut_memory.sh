@@ -27,17 +27,27 @@ reach="${REACH:-0.4}"
 if [ -n "${WORK:-}" ]; then mkdir -p "$WORK"; work="$(cd "$WORK" && pwd)"
 else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
 
-# scene_prm NAME OUT: print the scene's prm, its output in OUT.
-scene_prm() {
-  case "$1" in
-    sphere3d) cat <<PRM
+# box_prm OUT BOUNDARY: the 3D unit box's lines, output in OUT.
+box_prm() {
+  cat <<PRM
 set Dimension        = 3
-set Output directory = $2
+set Output directory = $1
 subsection Domain
   set Lower left         = 0, 0, 0
   set Upper right        = 1, 1, 1
-  set Boundary condition = linear shear
+  set Boundary condition = $2
 end
+subsection Output
+  set Verbosity                = verbose
+  set Particle output interval = 1
+end
+PRM
+}
+
+# scene_prm NAME OUT: print the scene's prm, its output in OUT.
+scene_prm() {
+  case "$1" in
+    sphere3d) box_prm "$2" "linear shear"; cat <<PRM
 subsection Fluid
   set Model = cut finite element
 end
@@ -54,20 +64,9 @@ subsection Mesh refinement
   set Minimum level             = 2
   set Maximum level             = 5
 end
-subsection Output
-  set Verbosity                = verbose
-  set Particle output interval = 1
-end
 PRM
     ;;
-    dense3d) cat <<PRM
-set Dimension        = 3
-set Output directory = $2
-subsection Domain
-  set Lower left         = 0, 0, 0
-  set Upper right        = 1, 1, 1
-  set Boundary condition = sliding walls
-end
+    dense3d) box_prm "$2" "sliding walls"; cat <<PRM
 subsection Fluid
   set Model                  = cut finite element
   set Cut minimum gap        = $reach
@@ -93,10 +92,6 @@ subsection Mesh refinement
   set Initial global refinement = 4
   set Minimum level             = 4
   set Maximum level             = 4
-end
-subsection Output
-  set Verbosity                = verbose
-  set Particle output interval = 1
 end
 PRM
     ;;

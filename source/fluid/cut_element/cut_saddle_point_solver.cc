@@ -34,8 +34,8 @@ namespace Fidus
       pattern
         .fill(rows.size(), n_columns, [&](const unsigned int k, const auto &f) {
           for (auto it = matrix.begin(rows[k]); it != matrix.end(rows[k]); ++it)
-            if (column(it->column()) >= 0)
-              f(column(it->column()));
+            if (const int j = column(it->column()); j >= 0)
+              f(j);
         });
       block.reinit(pattern);
       // The values, on the machine's threads (each row is its own).
@@ -48,8 +48,8 @@ namespace Fidus
                           for (auto it = matrix.begin(rows[k]);
                                it != matrix.end(rows[k]);
                                ++it)
-                            if (column(it->column()) >= 0)
-                              row_values[column(it->column())] = it->value();
+                            if (const int j = column(it->column()); j >= 0)
+                              row_values[j] = it->value();
                           for (auto it = block.begin(k); it != block.end(k);
                                ++it)
                             {

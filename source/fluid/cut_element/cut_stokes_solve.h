@@ -511,7 +511,7 @@ namespace Fidus
     /// Between sliding walls, the rows of the matrix without the
     /// constraints that the walls' stress reads (wall_rows; the others
     /// hold their diagonal only, zero), on their own pattern.
-    SparsityPattern      wall_sparsity;
+    RowPattern           wall_sparsity;
     SparseMatrix<double> unconstrained;
     /// Between sliding walls, the test functions of the walls' stress
     /// (side 0: y = 0, 1: y = H; one per component) and the rows where

@@ -203,12 +203,12 @@ namespace Fidus
         }
     // Those rows of the system's pattern (which holds the unconstrained
     // entries); the other rows get their diagonal alone.
-    std::vector<std::vector<unsigned int>> rows(n_total);
-    for (unsigned int i = 0; i < n_total; ++i)
-      if (wall_rows[i])
-        for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
-          rows[i].push_back(it->column());
-    wall_sparsity.copy_from(n_total, n_total, rows.begin(), rows.end());
+    wall_sparsity
+      .fill(n_total, n_total, [&](const unsigned int i, const auto &f) {
+        if (wall_rows[i])
+          for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
+            f(it->column());
+      });
   }
 
   template <int dim>
