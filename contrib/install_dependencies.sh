@@ -8,9 +8,11 @@ set -euo pipefail
 # fast on 3D fronts, the same results to round-off
 # (contrib/benchmarks/blas_choice.sh, doc/performance.md). Serial, so that
 # MPI ranks do not compete with BLAS threads for the cores.
+# libmumps-dev: MUMPS's C interface, which the cut element calls (deal.II's
+# Trilinos depends on it already).
 packages=(libdeal.ii-dev numdiff libeigen3-dev libboost-dev ccache
           python3-matplotlib clang-format cmake g++ make openmpi-bin procps
-          bc time libopenblas0-serial)
+          bc time libopenblas0-serial libmumps-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

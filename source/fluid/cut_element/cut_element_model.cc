@@ -30,13 +30,8 @@ namespace Fidus
     for (unsigned int d = 0; d < dim; ++d)
       box_cells.push_back(
         static_cast<unsigned int>(std::lround((box.hi[d] - box.lo[d]) / unit)));
-    // The cut element's sparse direct solve is serial.
-    const unsigned int ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-    if (ranks > 1)
-      throw InputError("entry 'Fluid/Model' is 'cut finite element' on " +
-                       std::to_string(ranks) +
-                       " MPI ranks; allowed: 1 rank (its direct solver is "
-                       "serial)");
+    // More than one rank with the iterative solver is refused by
+    // CutElementParameters::check().
   }
 
 
@@ -121,15 +116,19 @@ namespace Fidus
     s.box_cells  = box_cells;
     // The fields are kept for output, and as the next solve's start with
     // the iterative solver (keeping costs a second DoF numbering of the
-    // mesh, small beside the solve; 'auto' is direct in 2D).
+    // mesh, small beside the solve; 'auto' is direct in 2D, and on more
+    // than one rank).
     const std::string &solver = prm.cut_element.linear_solver;
     const bool         direct =
-      solver == "direct" || (dim == 2 && solver != "iterative");
+      solver == "direct" ||
+      ((dim == 2 || Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1) &&
+       solver != "iterative");
     const bool warm_start =
       !direct && prm.cut_element.initial_guess == "previous solve";
     s.keep_fields   = prm.output.field_output_interval > 0 || warm_start;
     s.initial_guess = warm_start ? last_fields : nullptr;
     s.memory_limit  = prm.fictitious_domain.memory_per_rank;
+    s.communicator  = MPI_COMM_WORLD;
     s.global_level  = prm.refinement.minimum_level;
     s.band_levels = prm.refinement.maximum_level - prm.refinement.minimum_level;
     s.gap_cells   = prm.cut_element.gap_cells;
@@ -250,7 +249,9 @@ namespace Fidus
   CutElementModel<dim>::print_stages(
     const typename CutStokesInclusion<dim>::Result &r) const
   {
-    // One rank (the constructor refuses more).
+    // Every rank has the same figures (the first one's clock).
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return;
     const auto &t = r.stage_seconds;
     std::cout << "    cut element: " << r.n_dofs << " unknowns (" << r.n_entries
               << " matrix entries), " << r.n_cells << " cells ("

@@ -99,6 +99,28 @@ namespace Fidus
                              interpretation);
     data_out.add_data_vector(placement, "placement");
     data_out.add_data_vector(level, "level");
+    // Every rank holds the whole mesh; each writes a piece of the .pvtu,
+    // its own range of the active cells.
+    const unsigned int ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    const std::size_t  cells = tria.n_active_cells();
+    const std::size_t  lo    = cells * rank / ranks,
+                      hi     = cells * (rank + 1) / ranks;
+    using cell_iterator      = typename Triangulation<dim>::cell_iterator;
+    using active_iterator = typename Triangulation<dim>::active_cell_iterator;
+    const auto in_range   = [&](const Triangulation<dim> &t,
+                              active_iterator           c) -> cell_iterator {
+      while (c != t.end() && c->active_cell_index() < lo)
+        ++c;
+      return c != t.end() && c->active_cell_index() < hi ? c : t.end();
+    };
+    data_out.set_cell_selection(
+      [&](const Triangulation<dim> &t) {
+        return in_range(t, t.begin_active());
+      },
+      [&](const Triangulation<dim> &t, const cell_iterator &c) {
+        return in_range(t, std::next(active_iterator(c)));
+      });
     data_out.build_patches(2);
     data_out.map_points(box.lo, unit);
     field_output->write(data_out, step, time, MPI_COMM_WORLD);

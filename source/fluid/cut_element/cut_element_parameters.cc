@@ -1,6 +1,7 @@
 // The cut finite element's entries of the subsection Fluid.
 
 #include <cmath>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 #include <fidus/core/input_error.h>
@@ -23,14 +24,14 @@ namespace Fidus
       "Cut linear solver",
       "auto",
       Patterns::Selection("auto|automatic|direct|iterative"),
-      "With 'cut finite element': 'direct' factorises the system (MUMPS); "
-      "'iterative' runs FGMRES with a block preconditioner (a geometric "
-      "multigrid V-cycle for the velocities and rigid motions) to the "
-      "relative residual 1e-10; 'auto' (or 'automatic', its former "
-      "name) is iterative in 3D above "
-      "40000 unknowns, where the factorisation is slower and takes "
-      "several GB, and direct otherwise (doc/cut_element.md, 'The "
-      "iterative solver').");
+      "With 'cut finite element': 'direct' factorises the symmetric "
+      "system (MUMPS, LDL^T) over all the MPI ranks; 'iterative' runs "
+      "FGMRES with a block preconditioner (a geometric multigrid V-cycle "
+      "for the velocities and rigid motions) to the relative residual "
+      "1e-10, on one rank only; 'auto' (or 'automatic', its former "
+      "name) is iterative in 3D above 40000 unknowns on one rank, where "
+      "the factorisation is slower and takes several GB, and direct "
+      "otherwise (doc/theory/cut_element.md, 'Solvers').");
     prm.declare_entry(
       "Cut minimum gap",
       "auto",
@@ -209,17 +210,34 @@ namespace Fidus
              "the particles)";
         throw InputError(m.str());
       }
-    // The direct solver has no start: 'auto' is direct in 2D.
-    const bool direct = linear_solver == "direct" ||
-                        (scene.dimension == 2 && linear_solver != "iterative");
+    // The direct solver has no start: 'auto' is direct in 2D, and on more
+    // than one rank.
+    int mpi_started = 0;
+    MPI_Initialized(&mpi_started);
+    const bool many_ranks =
+      mpi_started && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1;
+    const bool direct =
+      linear_solver == "direct" ||
+      ((scene.dimension == 2 || many_ranks) && linear_solver != "iterative");
     if (direct && initial_guess != CutElementParameters().initial_guess)
       throw InputError(
         "entry 'Fluid/Cut initial guess' has the value '" + initial_guess +
         "' with the direct solver ('Fluid/Cut "
         "linear solver = " +
-        linear_solver + "' in " + std::to_string(scene.dimension) +
-        "D), which does not read it; allowed: its default, "
-        "or 'Fluid/Cut linear solver = iterative'");
+        linear_solver + "' " +
+        (many_ranks ? std::string("on more than one rank") :
+                      "in " + std::to_string(scene.dimension) + "D") +
+        "), which does not read it; allowed: its default, "
+        "or 'Fluid/Cut linear solver = iterative' on one rank");
+    // Every rank builds the whole cut mesh and the direct solver
+    // factorises over them; the iterative solver runs on one rank.
+    if (many_ranks && linear_solver == "iterative")
+      throw InputError(
+        "entry 'Fluid/Cut linear solver' is 'iterative' on " +
+        std::to_string(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) +
+        " MPI ranks; allowed: 'direct' or 'auto' on more than "
+        "one rank, or 'iterative' on one (the cut element's "
+        "iterative solver runs on one rank)");
     if (!scene.lubrication.enabled)
       return;
     // The cut element solves the bonds with the flow at the start's gaps.

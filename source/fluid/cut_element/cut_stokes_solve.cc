@@ -1,16 +1,11 @@
 #include "cut_stokes_solve.h"
 
-#include <Amesos.h>
-#include <Amesos_Mumps.h>
 #include <Eigen/Core>
-#include <Epetra_LinearProblem.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/core/memory_budget.h>
@@ -20,6 +15,7 @@
 #include <fidus/fluid/cut_element/cut_level_set.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/element_sparsity.h>
+#include <fidus/fluid/cut_element/mumps_solver.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <limits>
 #include <map>
@@ -63,6 +59,10 @@ namespace Fidus
       refuse("a ghost penalty",
              std::min(s.ghost_velocity, s.ghost_pressure),
              ">= 0 (0 leaves small cut pieces unstable)");
+    if (n_ranks > 1 && s.linear_solver == LinearSolver::iterative)
+      refuse("the number of ranks of the iterative solver",
+             n_ranks,
+             "1 (on more ranks the direct solver factorises over them)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
     if (!s.box_cells.empty() && s.box_cells.size() != dim)
@@ -135,14 +135,17 @@ namespace Fidus
   CutStokesSolve<dim>::setup_dofs_and_constraints()
   {
     // The solve takes the machine's cores as threads (at most
-    // DEAL_II_NUM_THREADS where that is set): the assembly, the patterns
-    // and the multigrid's products split among them, and deal.II's sparse
-    // products and vector operations, most of an iterative solve. fidus
-    // starts with one thread per rank, as the fictitious domain runs one
-    // rank per core; the cut element runs on one rank. MUMPS factorises on
-    // one core. Threads sum the products in another order: the answers
-    // agree with one thread's to round-off.
-    MultithreadInfo::set_thread_limit(numbers::invalid_unsigned_int);
+    // DEAL_II_NUM_THREADS where that is set), shared by the ranks on the
+    // machine: the assembly, the patterns and the multigrid's products
+    // split among them, and deal.II's sparse products and vector
+    // operations, most of an iterative solve. fidus starts with one thread
+    // per rank, as the fictitious domain runs one rank per core. MUMPS
+    // factorises on one core per rank. Threads sum the products in another
+    // order: the answers agree with one thread's to round-off.
+    MultithreadInfo::set_thread_limit(
+      n_ranks == 1 ?
+        numbers::invalid_unsigned_int :
+        std::max(1u, MultithreadInfo::n_cores() / ranks_on_machine));
     // Eigen's products (product_transposed()) read cache sizes it sets up
     // once: set up here, before the threads.
     Eigen::initParallel();
@@ -233,7 +236,7 @@ namespace Fidus
   {
     return s.linear_solver == LinearSolver::iterative ||
            (s.linear_solver == LinearSolver::automatic && dim == 3 &&
-            n_total > 40000);
+            n_ranks == 1 && n_total > 40000);
   }
 
   template <int dim>
@@ -254,17 +257,25 @@ namespace Fidus
     // its blocks are both held, 24-34 bytes per entry from a dense
     // suspension (600-740 entries per unknown) to one sphere (240; per
     // unknown 8 to 18 KB). Before the pattern, a bound per unknown below
-    // all of them. The direct solver's factor fills in: 8-11 KB per
-    // unknown in 2D, 56-68 KB in 3D. The lower ends, so that a solve is
-    // stopped only when it would clearly not fit.
+    // all of them. The direct solver's factor fills in: as LU 8-11 KB per
+    // unknown in 2D, 56-68 KB in 3D; as LDL^T 4.1 KB in 2D, 32 KB in 3D.
+    // The lower ends, so that a solve is stopped only when it would
+    // clearly not fit.
+    const bool   ldlt     = !iterate && system_is_symmetric();
     const double per_unit = with_pattern ? 24. :
                             iterate      ? 8e3 :
-                            dim == 2     ? 7e3 :
-                                           50e3;
+                            dim == 2     ? (ldlt ? 4e3 : 7e3) :
+                                           (ldlt ? 28e3 : 50e3);
     const double units    = with_pattern ? double(result.n_entries) : n_total;
-    const double needed   = per_unit * units;
-    const MemoryBudget budget(s.memory_limit, MPI_COMM_SELF);
-    const double       free = budget.free_bytes();
+    // On more ranks, about half of the direct solver's peak is held by
+    // every rank (the mesh, the system and its copies) and the factor,
+    // the other half, is shared (2D and 3D, 1 to 3 ranks: 0.43-0.56).
+    const double needed =
+      per_unit * units * (n_ranks == 1 ? 1. : 0.5 + 0.5 / n_ranks);
+    const MemoryBudget budget(s.memory_limit, s.communicator);
+    // The least any rank has: the ranks decide together.
+    const double free =
+      dealii::Utilities::MPI::min(budget.free_bytes(), s.communicator);
     if (needed <= free)
       return;
     std::ostringstream m;
@@ -272,7 +283,11 @@ namespace Fidus
     if (with_pattern)
       m << " and " << result.n_entries << " matrix entries";
     m << "; its " << (iterate ? "iterative" : "direct") << " solve needs about "
-      << MemoryUsage::format(needed) << " ("
+      << MemoryUsage::format(needed)
+      << (n_ranks > 1 ?
+            " on each of its " + std::to_string(n_ranks) + " ranks" :
+            std::string())
+      << " ("
       << (with_pattern ? std::to_string(int(per_unit)) + " B per entry" :
                          MemoryUsage::format(per_unit) + " per unknown")
       << "), but this rank has " << MemoryUsage::format(free) << " left ("
@@ -379,10 +394,6 @@ namespace Fidus
 
     n_ext = n_local + n_rigid;
     local_rhs.reinit(n_ext);
-    // The external forces load the translations of the rigid unknowns.
-    for (unsigned int p = 0; p < particles.size(); ++p)
-      for (unsigned int d = 0; d < dim; ++d)
-        rhs(n_fluid + p * n_rigid + d) = particles[p].force[d];
   }
 
   template <int dim>
@@ -421,11 +432,10 @@ namespace Fidus
   void
   CutStokesSolve<dim>::solve_linear_system()
   {
-    // The saddle-point system is solved directly, with MUMPS through
-    // Trilinos' Amesos (KLU where MUMPS is not available): UMFPACK, tried
-    // first, returned wrong solutions without an error above about 1.5e5
-    // unknowns. The residual is measured, since a factorisation that lost
-    // accuracy gives no error.
+    // The saddle-point system is solved directly with MUMPS (UMFPACK,
+    // tried first, returned wrong solutions without an error above about
+    // 1.5e5 unknowns), or iteratively. The residual is measured, since a
+    // factorisation that lost accuracy gives no error.
     //
     // A refined gap puts cells 1e-4 times smaller than the box's next to
     // its coarse ones, and the pressure of a cell of size h couples with
@@ -674,102 +684,101 @@ namespace Fidus
   }
 
   template <int dim>
+  bool
+  CutStokesSolve<dim>::system_is_symmetric() const
+  {
+    if (!s.symmetric_factorisation)
+      return false;
+    // The fluid's terms are symmetric by construction (tested by
+    // fluid/cut_symmetric: LDL^T and LU agree); a rigid coupling is
+    // whatever its model gives.
+    for (const auto &c : s.couplings)
+      {
+        double largest = 0., asymmetry = 0.;
+        for (unsigned int k = 0; k < c.matrix.size(); ++k)
+          for (unsigned int l = 0; l < c.matrix.size(); ++l)
+            {
+              largest = std::max(largest, std::abs(c.matrix[k][l]));
+              asymmetry =
+                std::max(asymmetry, std::abs(c.matrix[k][l] - c.matrix[l][k]));
+            }
+        if (asymmetry > 1e-12 * largest)
+          return false;
+      }
+    return true;
+  }
+
+  template <int dim>
   void
   CutStokesSolve<dim>::solve_direct(const Vector<double> &scaled_rhs,
                                     Vector<double>       &scaled_solution,
                                     Vector<double>       &residual)
   {
     // The bordered system [A' m'; m'^T 1] [x'; y] = [b'; 0], whose first
-    // rows are A' x' - m' m'^T x' = b' (y = -m'^T x').
-    // Filled in Trilinos' matrix directly, a whole row per call, on row
-    // lengths known in advance: no second copy of the system, and no
-    // pattern built entry by entry (that and the entry-wise copy took a
-    // fifth of a dense 2D step).
-    const unsigned int        n = n_total + 1;
-    std::vector<unsigned int> row_length(n, 1);
-    for (unsigned int i = 0; i < n_total; ++i)
-      {
-        row_length[i] = matrix.get_row_length(i);
-        if (scaled_mean[i] != 0.)
-          {
-            ++row_length[i];
-            ++row_length[n_total];
-          }
-      }
-    TrilinosWrappers::SparseMatrix trilinos_matrix(n, n, row_length);
-    std::vector<TrilinosWrappers::SparseMatrix::size_type> columns;
-    std::vector<double>                                    values;
-    const auto add_row = [&](const unsigned int row) {
-      trilinos_matrix.set(row,
-                          columns.size(),
-                          columns.data(),
-                          values.data(),
-                          false);
-      columns.clear();
-      values.clear();
-    };
-    for (unsigned int i = 0; i < n_total; ++i)
+    // rows are A' x' - m' m'^T x' = b' (y = -m'^T x'), handed to MUMPS as
+    // its entries: each rank its own range of rows, from the whole system
+    // every rank holds; of a symmetric system the upper triangle only.
+    const unsigned int n     = n_total + 1;
+    const unsigned int first = std::uint64_t(n) * this_rank / n_ranks,
+                       last  = std::uint64_t(n) * (this_rank + 1) / n_ranks;
+    const bool symmetric     = system_is_symmetric();
+    result.symmetric_factorisation = symmetric;
+    std::vector<int>    rows, columns;
+    std::vector<double> values;
+    const auto          add =
+      [&](const unsigned int i, const unsigned int j, const double value) {
+        if (symmetric && j < i)
+          return;
+        rows.push_back(i);
+        columns.push_back(j);
+        values.push_back(value);
+      };
+    for (unsigned int i = first; i < std::min(last, n_total); ++i)
       {
         for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-          {
-            columns.push_back(it->column());
-            values.push_back(it->value());
-          }
+          add(i, it->column(), it->value());
         if (scaled_mean[i] != 0.)
-          {
-            columns.push_back(n_total);
-            values.push_back(scaled_mean[i]);
-          }
-        add_row(i);
+          add(i, n_total, scaled_mean[i]);
       }
-    for (unsigned int i = 0; i < n_total; ++i)
-      if (scaled_mean[i] != 0.)
-        {
-          columns.push_back(i);
-          values.push_back(scaled_mean[i]);
-        }
-    columns.push_back(n_total);
-    values.push_back(1.);
-    add_row(n_total);
-    trilinos_matrix.compress(VectorOperation::insert);
-    const IndexSet                all = complete_index_set(n);
-    TrilinosWrappers::MPI::Vector x(all, MPI_COMM_SELF), b(all, MPI_COMM_SELF);
-    Epetra_LinearProblem          problem;
-    problem.SetOperator(
-      const_cast<Epetra_CrsMatrix *>(&trilinos_matrix.trilinos_matrix()));
-    problem.SetLHS(&x.trilinos_vector());
-    problem.SetRHS(&b.trilinos_vector());
-    Amesos                             factory;
-    std::unique_ptr<Amesos_BaseSolver> direct;
-    for (const char *name : {"Amesos_Mumps", "Amesos_Klu"})
+    if (last == n)
       {
-        direct.reset(factory.Create(name, problem));
-        if (!direct)
-          continue;
-        // MUMPS's fill-reducing ordering: approximate minimum degree in
-        // 2D, 11-12 % less time per dense 2D step than the automatic
-        // choice (PORD, where MUMPS is built without METIS and SCOTCH, as
-        // Debian's is); in 3D PORD, against which AMD took 40 % longer
-        // (doc/history/cut_element_solvers.md, "The direct solver's ordering").
-        if (auto *mumps = dynamic_cast<Amesos_Mumps *>(direct.get());
-            mumps && dim == 2)
-          mumps->SetICNTL(7, 0);
-        if (direct->SymbolicFactorization() == 0 &&
-            direct->NumericFactorization() == 0)
-          break;
-        direct.reset();
+        for (unsigned int j = 0; j < n_total; ++j)
+          if (scaled_mean[j] != 0.)
+            add(n_total, j, scaled_mean[j]);
+        add(n_total, n_total, 1.);
       }
-    if (!direct)
-      throw std::runtime_error(
-        "CutStokesInclusion: the direct solvers (MUMPS, then KLU) failed; "
-        "the system is numerically singular (are the ghost penalties "
-        "zero?)");
+    // MUMPS's fill-reducing ordering: approximate minimum degree in 2D,
+    // 11-12 % less time per dense 2D step than the automatic choice (PORD,
+    // where MUMPS is built without METIS and SCOTCH, as Debian's is); in
+    // 3D the automatic choice, PORD, against which AMD took 40 % longer
+    // (doc/history/cut_element_solvers.md, "The direct solver's ordering").
+    MumpsSolver::Settings settings;
+    settings.symmetric = symmetric;
+    settings.ordering  = dim == 2 ? 0 : 7;
+    MumpsSolver direct(s.communicator, settings);
+    try
+      {
+        direct.factorize(n,
+                         std::move(rows),
+                         std::move(columns),
+                         std::move(values));
+      }
+    catch (const std::exception &e)
+      {
+        throw std::runtime_error(
+          std::string("CutStokesInclusion: ") + e.what() +
+          "; is the system singular (are the ghost penalties zero?)");
+      }
+    // Two steps of iterative refinement take the residual to round-off.
+    // Every rank ends with the whole solution.
+    Vector<double> x(n);
     residual = scaled_rhs;
     for (unsigned int step = 0; step < 3; ++step)
       {
         for (unsigned int i = 0; i < n_total; ++i)
-          b[i] = residual[i];
-        direct->Solve();
+          x[i] = residual[i];
+        x[n_total] = 0.;
+        direct.solve(x);
         for (unsigned int i = 0; i < n_total; ++i)
           scaled_solution[i] += x[i];
         apply_system(residual, scaled_solution);

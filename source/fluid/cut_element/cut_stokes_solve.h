@@ -5,6 +5,7 @@
 #include <array>
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/timer.h>
@@ -85,6 +86,21 @@ namespace Fidus
       for (unsigned int d = 0; d < dim; ++d)
         if (periodic && d != 1)
           periodic_axes.push_back(d);
+      int mpi_started = 0;
+      MPI_Initialized(&mpi_started);
+      if (mpi_started)
+        {
+          n_ranks   = Utilities::MPI::n_mpi_processes(s.communicator);
+          this_rank = Utilities::MPI::this_mpi_process(s.communicator);
+          MPI_Comm machine;
+          MPI_Comm_split_type(s.communicator,
+                              MPI_COMM_TYPE_SHARED,
+                              0,
+                              MPI_INFO_NULL,
+                              &machine);
+          ranks_on_machine = Utilities::MPI::n_mpi_processes(machine);
+          MPI_Comm_free(&machine);
+        }
     }
 
     /// Check the settings, build the mesh, assemble, solve and measure:
@@ -116,6 +132,7 @@ namespace Fidus
       stage.dofs = lap();
       assemble_cells();
       assemble_ghost_penalties();
+      sum_over_ranks();
       assemble_couplings();
       stage.assembly = lap();
       solve_linear_system();
@@ -237,8 +254,15 @@ namespace Fidus
     void
     assemble_ghost_penalties();
 
-    /// Add Settings::couplings to the rigid rows (matrix and right-hand
-    /// side).
+    /// With more than one rank, sum the ranks' shares of the system, the
+    /// right-hand side, the pressure means and the walls' rows, so that
+    /// every rank holds the whole (Settings::communicator).
+    void
+    sum_over_ranks();
+
+    /// Add the particles' external forces and Settings::couplings to the
+    /// rigid rows (matrix and right-hand side), once, after the ranks'
+    /// shares are summed.
     void
     assemble_couplings();
 
@@ -294,6 +318,15 @@ namespace Fidus
     {
       return std::find(periodic_axes.begin(), periodic_axes.end(), d) !=
              periodic_axes.end();
+    }
+
+    /// Whether this rank assembles the @p k-th of the cells (or faces) of
+    /// one kind, in the order every rank walks them: round robin, so that
+    /// the costly cut cells are shared as evenly as the full ones.
+    bool
+    mine(const unsigned int k) const
+    {
+      return k % n_ranks == this_rank;
     }
 
     /// Where @p cell lies relative to the particles: every loop asks.
@@ -454,8 +487,15 @@ namespace Fidus
       dst.add(-(scaled_mean * src), scaled_mean);
     }
 
-    /// The direct solve of the scaled system, MUMPS (KLU where it is
-    /// missing) with iterative refinement; @p residual is A' x' - b'.
+    /// Whether the direct solver may factorise the system as symmetric
+    /// (Settings::symmetric_factorisation, and every rigid coupling
+    /// symmetric).
+    bool
+    system_is_symmetric() const;
+
+    /// The direct solve of the scaled system over the ranks, MUMPS
+    /// (MumpsSolver) with iterative refinement; @p residual is
+    /// A' x' - b'.
     void
     solve_direct(const Vector<double> &scaled_rhs,
                  Vector<double>       &scaled_solution,
@@ -480,6 +520,10 @@ namespace Fidus
     const double eta, g;
     /// Sliding walls; the exact inclusion.
     const bool periodic, exact_case;
+    /// The ranks that share the solve, this one's number among them, and
+    /// how many of them share this machine's cores
+    /// (Settings::communicator; 1, 0, 1 without MPI).
+    unsigned int n_ranks = 1, this_rank = 0, ranks_on_machine = 1;
     /// The periodic axes (every one but y between sliding walls).
     std::vector<unsigned int> periodic_axes;
     /// What the solve gives, filled stage by stage.

@@ -294,15 +294,38 @@ namespace Fidus
           full_cells.emplace(cell->level(),
                              std::make_pair(copy.local, copy.local_pressure));
         }
+    // This rank's share of the fluid cells, cut and full each dealt round
+    // robin (all of them on one rank, in the same order).
+    std::vector<cell_iterator> share;
+    unsigned int               n_cut = 0, n_full = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->active_fe_index() == 0 &&
+          mine(placed(cell).n_cut > 0 ? n_cut++ : n_full++))
+        share.push_back(cell);
     WorkStream::run(
-      dof_handler.begin_active(),
-      dof_handler.end(),
-      [this](const cell_iterator &cell, CellScratch &sc, CellCopy &cp) {
-        assemble_cell(cell, sc, cp);
-      },
+      share.begin(),
+      share.end(),
+      [this](const typename std::vector<cell_iterator>::iterator &cell,
+             CellScratch                                         &sc,
+             CellCopy &cp) { assemble_cell(*cell, sc, cp); },
       [this](const CellCopy &cp) { distribute_cell(cp); },
       scratch,
       copy);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::sum_over_ranks()
+  {
+    // Every rank built the same patterns, so the shares add entry by entry.
+    if (n_ranks == 1)
+      return;
+    Assert(!iterative, ExcInternalError());
+    Utilities::MPI::sum(matrix, s.communicator, matrix);
+    Utilities::MPI::sum(rhs, s.communicator, rhs);
+    Utilities::MPI::sum(pressure_mean, s.communicator, pressure_mean);
+    if (periodic)
+      Utilities::MPI::sum(unconstrained, s.communicator, unconstrained);
   }
 
   template <int dim>
@@ -312,6 +335,9 @@ namespace Fidus
     // The rigid rows read A x = F: the fluid's traction and the external
     // force. A resistance whose load on the particles is -M x + l joins
     // them as (A + M) x = F + l.
+    for (unsigned int p = 0; p < particles.size(); ++p)
+      for (unsigned int d = 0; d < dim; ++d)
+        rhs(n_fluid + p * n_rigid + d) += particles[p].force[d];
     for (const auto &c : s.couplings)
       {
         const unsigned int m = c.owners.size() * n_rigid;
@@ -459,12 +485,17 @@ namespace Fidus
     FaceScratch    scratch(*this);
     FaceCopy       copy;
     Vector<double> face_rhs;
+    // This rank's share of the faces, dealt round robin.
+    std::vector<const GhostFace *> share;
+    for (unsigned int k = 0; k < ghost_faces.size(); ++k)
+      if (mine(k))
+        share.push_back(&ghost_faces[k]);
     WorkStream::run(
-      ghost_faces.begin(),
-      ghost_faces.end(),
-      [this](const typename std::vector<GhostFace>::iterator &ghost,
-             FaceScratch                                     &sc,
-             FaceCopy &cp) { assemble_face(*ghost, sc, cp); },
+      share.begin(),
+      share.end(),
+      [this](const typename std::vector<const GhostFace *>::iterator &ghost,
+             FaceScratch                                             &sc,
+             FaceCopy &cp) { assemble_face(**ghost, sc, cp); },
       [this, &face_rhs](const FaceCopy &cp) {
         if (periodic)
           add_sorted(unconstrained, cp.face_dofs, cp.face_matrix, wall_rows);
@@ -489,6 +520,8 @@ namespace Fidus
   template void
   CutStokesSolve<2>::assemble_ghost_penalties();
   template void
+  CutStokesSolve<2>::sum_over_ranks();
+  template void
   CutStokesSolve<2>::assemble_couplings();
   template struct CutStokesSolve<3>::CellScratch;
   template struct CutStokesSolve<3>::CellCopy;
@@ -497,6 +530,8 @@ namespace Fidus
   CutStokesSolve<3>::assemble_cells();
   template void
   CutStokesSolve<3>::assemble_ghost_penalties();
+  template void
+  CutStokesSolve<3>::sum_over_ranks();
   template void
   CutStokesSolve<3>::assemble_couplings();
 } // namespace Fidus

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# The cut finite element on 1, 2 and 3 MPI ranks: every rank builds the
+# whole cut mesh, the ranks assemble shares of the cells and faces and sum
+# them, and MUMPS factorises over the ranks; the answers must agree to
+# round-off (tests/cli/check_cut_ranks.py does the checks):
+#  1. 2D, three discs between sliding walls (the walls' stress is summed
+#     over the ranks' shares too), field output: particles.csv within 1e-9
+#     of each column's largest value, statistics.csv's stresses within
+#     1e-9, and the .pvtu's pieces, one per rank, together the one rank's
+#     fields;
+#  2. 2D, two discs in linear shear, one pushed by an external force (added
+#     once, after the shares are summed): the same agreement, and the
+#     pushed disc moves along the force;
+#  3. 3D, two spheres in linear shear (the direct solver, which 'auto'
+#     takes on more than one rank): 1 against 2 ranks;
+#  4. the iterative solver on 2 ranks is refused, naming the entry.
+# Usage: run_cut_ranks_test.sh path/to/fidus path/to/repo
+. "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+
+scene() {  # scene NAME DIMENSION BOUNDARY RADIUS POSITIONS FORCE LEVELS
+  local upper="1, 1" && [ "$2" = 3 ] && upper="1, 1, 1"
+  local lower="0, 0" && [ "$2" = 3 ] && lower="0, 0, 0"
+  cat <<PRM
+set Dimension = $2
+set Output directory = $work/$1
+subsection Domain
+  set Lower left = $lower
+  set Upper right = $upper
+  set Boundary condition = $3
+end
+subsection Fluid
+  set Model = cut finite element
+  set Cut minimum gap = 1e-3
+end
+subsection Particles
+  set Radius = $4
+  set Positions = $5
+  set External force = $6
+end
+subsection Contact
+  set Model = inelastic
+end
+subsection Time stepping
+  set End time = 0.4
+  set Time step = 0.2
+end
+subsection Mesh refinement
+  set Initial global refinement = ${7%,*}
+  set Minimum level = ${7%,*}
+  set Maximum level = ${7#*,}
+end
+subsection Output
+  set Field output interval = 1
+  set Verbosity = quiet
+end
+PRM
+}
+
+run() {  # run NAME RANKS: fidus on NAME.prm into NAME-RANKS/
+  sed "s|$work/$1\$|$work/$1-$2|" "$1.prm" > "$1-$2.prm"
+  check "fidus runs $1.prm on $2 rank(s)" \
+    mpirun -np "$2" "$fidus" "$1-$2.prm"
+}
+
+scene walls 2 "sliding walls" 0.06 "0.7, 0.8; 0.45, 0.5; 0.25, 0.3" "" 3,5 \
+  > walls.prm
+scene forced 2 "linear shear" 0.06 "0.35, 0.5; 0.65, 0.55" \
+  "0.5, -1; 0, 0" 3,5 > forced.prm
+scene spheres 3 "linear shear" 0.15 "0.3, 0.45, 0.5; 0.7, 0.55, 0.5" \
+  "" 2,3 > spheres.prm
+for ranks in 1 2 3; do
+  run walls $ranks
+  run forced $ranks
+done
+for ranks in 1 2; do
+  run spheres $ranks
+done
+check "the ranks agree (check_cut_ranks.py)" \
+  "$python" "$repo/tests/cli/check_cut_ranks.py" "$work"
+
+# 4. The iterative solver runs on one rank.
+sed 's/set Cut minimum gap = 1e-3/&\n  set Cut linear solver = iterative/' \
+  walls.prm > iterative.prm
+mpirun -np 2 "$fidus" --validate iterative.prm > iterative.log 2>&1
+status=$?
+check "the iterative solver on 2 ranks exits non-zero" [ $status -ne 0 ]
+check "its message names the entry and what is allowed" \
+  grep -q "entry 'Fluid/Cut linear solver' is 'iterative' on 2 MPI ranks; allowed: 'direct' or 'auto'" \
+  iterative.log
+
+echo "$passes passed, $failures failed"
+[ $failures -eq 0 ]
