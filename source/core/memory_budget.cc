@@ -38,16 +38,23 @@ namespace Fidus
 
 
 
-  MemoryBudget::MemoryBudget(const double limit_per_rank, MPI_Comm comm)
-    : limit_per_rank(limit_per_rank)
+  unsigned int
+  ranks_on_this_machine(MPI_Comm comm)
   {
     MPI_Comm machine;
     MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine);
     int size = 1;
     MPI_Comm_size(machine, &size);
-    ranks_on_machine = size;
     MPI_Comm_free(&machine);
+    return size;
   }
+
+
+
+  MemoryBudget::MemoryBudget(const double limit_per_rank, MPI_Comm comm)
+    : limit_per_rank(limit_per_rank)
+    , ranks_on_machine(ranks_on_this_machine(comm))
+  {}
 
 
 

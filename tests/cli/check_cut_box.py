@@ -3,13 +3,11 @@
 scaled/ and doubled/ (see there). Reads particles.csv, statistics.csv and
 the last solution_*.vtu (deal.II's zlib-compressed, base64-encoded arrays)
 with the standard library only. Usage: check_cut_box.py WORK_FOLDER"""
-import base64
 import csv
 import glob
-import re
-import struct
 import sys
-import zlib
+
+from deal_vtu import vtu_arrays
 
 work = sys.argv[1]
 failures = 0
@@ -34,25 +32,6 @@ def particles(run):
 
 def statistics(run):
     return list(csv.DictReader(open('%s/%s/statistics.csv' % (work, run))))
-
-
-def vtu_arrays(path):
-    """Every DataArray of a deal.II .vtu file, by name, as a flat list."""
-    text = open(path).read()
-    arrays = {}
-    for m in re.finditer(r'<DataArray([^>]*)>\s*([^<]*)</DataArray>', text):
-        attributes, data = m.group(1), m.group(2).strip()
-        name = re.search(r'Name="([^"]*)"', attributes)
-        kind = re.search(r'type="([^"]*)"', attributes).group(1)
-        # A 16-byte header (blocks, block size, last block size, compressed
-        # size) in 24 base64 characters, then the compressed bytes.
-        raw = zlib.decompress(base64.b64decode(data[24:]))
-        code = {'Float32': 'f', 'Float64': 'd', 'Int32': 'i',
-                'UInt8': 'B', 'Int64': 'q', 'UInt32': 'I'}[kind]
-        values = struct.unpack('<%d%s' % (len(raw) // struct.calcsize(code),
-                                          code), raw)
-        arrays[name.group(1) if name else 'points'] = values
-    return arrays
 
 
 def last_vtu(run):

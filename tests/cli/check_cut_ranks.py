@@ -4,13 +4,12 @@ NAME-RANKS/ (see there): the cut element on 2 and 3 ranks against 1, to
 round-off. Reads particles.csv, statistics.csv and the last step's
 solution_*.vtu pieces (deal.II's zlib-compressed, base64-encoded arrays)
 with the standard library only. Usage: check_cut_ranks.py WORK_FOLDER"""
-import base64
 import csv
 import glob
 import re
-import struct
 import sys
-import zlib
+
+from deal_vtu import vtu_arrays
 
 work = sys.argv[1]
 failures = 0
@@ -47,24 +46,6 @@ def worst_difference(reference, other, groups):
                 worst = max(worst,
                             abs(float(a[column]) - float(b[column])) / scale)
     return worst
-
-
-def vtu_arrays(path):
-    """Every DataArray of a deal.II .vtu file, by name, as a flat list."""
-    text = open(path).read()
-    arrays = {}
-    for m in re.finditer(r'<DataArray([^>]*)>\s*([^<]*)</DataArray>', text):
-        attributes, data = m.group(1), m.group(2).strip()
-        name = re.search(r'Name="([^"]*)"', attributes)
-        kind = re.search(r'type="([^"]*)"', attributes).group(1)
-        # A 16-byte header (blocks, block size, last block size, compressed
-        # size) in 24 base64 characters, then the compressed bytes.
-        raw = zlib.decompress(base64.b64decode(data[24:]))
-        code = {'Float32': 'f', 'Float64': 'd', 'Int32': 'i',
-                'UInt8': 'B', 'Int64': 'q', 'UInt32': 'I'}[kind]
-        arrays[name.group(1) if name else 'points'] = struct.unpack(
-            '<%d%s' % (len(raw) // struct.calcsize(code), code), raw)
-    return arrays
 
 
 def last_fields(run):

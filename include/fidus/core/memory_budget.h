@@ -6,6 +6,11 @@
 
 namespace Fidus
 {
+  /// How many ranks of @p comm share this rank's machine (its memory and
+  /// cores). Collective on @p comm.
+  unsigned int
+  ranks_on_this_machine(MPI_Comm comm);
+
   /**
    * How much more memory a rank may allocate, so that a run that would not
    * fit says so instead of being killed by the operating system.
@@ -35,8 +40,8 @@ namespace Fidus
     source() const;
 
   private:
-    const double limit_per_rank;
-    unsigned int ranks_on_machine = 1;
+    const double       limit_per_rank;
+    const unsigned int ranks_on_machine;
   };
 } // namespace Fidus
 

@@ -116,15 +116,9 @@ namespace Fidus
     s.box_cells  = box_cells;
     // The fields are kept for output, and as the next solve's start with
     // the iterative solver (keeping costs a second DoF numbering of the
-    // mesh, small beside the solve; 'auto' is direct in 2D, and on more
-    // than one rank).
-    const std::string &solver = prm.cut_element.linear_solver;
-    const bool         direct =
-      solver == "direct" ||
-      ((dim == 2 || Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1) &&
-       solver != "iterative");
-    const bool warm_start =
-      !direct && prm.cut_element.initial_guess == "previous solve";
+    // mesh, small beside the solve).
+    const bool warm_start = !prm.cut_element.direct_solver(dim) &&
+                            prm.cut_element.initial_guess == "previous solve";
     s.keep_fields   = prm.output.field_output_interval > 0 || warm_start;
     s.initial_guess = warm_start ? last_fields : nullptr;
     s.memory_limit  = prm.fictitious_domain.memory_per_rank;

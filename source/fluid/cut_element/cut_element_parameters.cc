@@ -16,6 +16,18 @@ namespace Fidus
 {
   using namespace dealii;
 
+  namespace
+  {
+    /// The run's MPI ranks (1 where MPI was not started).
+    unsigned int
+    mpi_ranks()
+    {
+      int started = 0;
+      MPI_Initialized(&started);
+      return started ? Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) : 1;
+    }
+  } // namespace
+
   void
   CutElementParameters::declare(ParameterHandler &prm)
   {
@@ -163,6 +175,15 @@ namespace Fidus
 
 
 
+  bool
+  CutElementParameters::direct_solver(const unsigned int dimension) const
+  {
+    return linear_solver == "direct" || ((dimension == 2 || mpi_ranks() > 1) &&
+                                         linear_solver != "iterative");
+  }
+
+
+
   void
   CutElementParameters::check(const Parameters &scene) const
   {
@@ -210,16 +231,10 @@ namespace Fidus
              "the particles)";
         throw InputError(m.str());
       }
-    // The direct solver has no start: 'auto' is direct in 2D, and on more
-    // than one rank.
-    int mpi_started = 0;
-    MPI_Initialized(&mpi_started);
-    const bool many_ranks =
-      mpi_started && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1;
-    const bool direct =
-      linear_solver == "direct" ||
-      ((scene.dimension == 2 || many_ranks) && linear_solver != "iterative");
-    if (direct && initial_guess != CutElementParameters().initial_guess)
+    // The direct solver has no start.
+    const bool many_ranks = mpi_ranks() > 1;
+    if (direct_solver(scene.dimension) &&
+        initial_guess != CutElementParameters().initial_guess)
       throw InputError(
         "entry 'Fluid/Cut initial guess' has the value '" + initial_guess +
         "' with the direct solver ('Fluid/Cut "
@@ -232,12 +247,11 @@ namespace Fidus
     // Every rank builds the whole cut mesh and the direct solver
     // factorises over them; the iterative solver runs on one rank.
     if (many_ranks && linear_solver == "iterative")
-      throw InputError(
-        "entry 'Fluid/Cut linear solver' is 'iterative' on " +
-        std::to_string(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)) +
-        " MPI ranks; allowed: 'direct' or 'auto' on more than "
-        "one rank, or 'iterative' on one (the cut element's "
-        "iterative solver runs on one rank)");
+      throw InputError("entry 'Fluid/Cut linear solver' is 'iterative' on " +
+                       std::to_string(mpi_ranks()) +
+                       " MPI ranks; allowed: 'direct' or 'auto' on more than "
+                       "one rank, or 'iterative' on one (the cut element's "
+                       "iterative solver runs on one rank)");
     if (!scene.lubrication.enabled)
       return;
     // The cut element solves the bonds with the flow at the start's gaps.

@@ -143,9 +143,10 @@ namespace Fidus
     // factorises on one core per rank. Threads sum the products in another
     // order: the answers agree with one thread's to round-off.
     MultithreadInfo::set_thread_limit(
-      n_ranks == 1 ?
-        numbers::invalid_unsigned_int :
-        std::max(1u, MultithreadInfo::n_cores() / ranks_on_machine));
+      n_ranks == 1 ? numbers::invalid_unsigned_int :
+                     std::max(1u,
+                              MultithreadInfo::n_cores() /
+                                ranks_on_this_machine(s.communicator)));
     // Eigen's products (product_transposed()) read cache sizes it sets up
     // once: set up here, before the threads.
     Eigen::initParallel();

@@ -92,14 +92,6 @@ namespace Fidus
         {
           n_ranks   = Utilities::MPI::n_mpi_processes(s.communicator);
           this_rank = Utilities::MPI::this_mpi_process(s.communicator);
-          MPI_Comm machine;
-          MPI_Comm_split_type(s.communicator,
-                              MPI_COMM_TYPE_SHARED,
-                              0,
-                              MPI_INFO_NULL,
-                              &machine);
-          ranks_on_machine = Utilities::MPI::n_mpi_processes(machine);
-          MPI_Comm_free(&machine);
         }
     }
 
@@ -520,10 +512,9 @@ namespace Fidus
     const double eta, g;
     /// Sliding walls; the exact inclusion.
     const bool periodic, exact_case;
-    /// The ranks that share the solve, this one's number among them, and
-    /// how many of them share this machine's cores
-    /// (Settings::communicator; 1, 0, 1 without MPI).
-    unsigned int n_ranks = 1, this_rank = 0, ranks_on_machine = 1;
+    /// The ranks that share the solve and this one's number among them
+    /// (Settings::communicator; 1 and 0 without MPI).
+    unsigned int n_ranks = 1, this_rank = 0;
     /// The periodic axes (every one but y between sliding walls).
     std::vector<unsigned int> periodic_axes;
     /// What the solve gives, filled stage by stage.

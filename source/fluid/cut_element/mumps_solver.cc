@@ -60,13 +60,10 @@ namespace Fidus
 
   void
   MumpsSolver::factorize(const unsigned int  n,
-                         std::vector<int>    new_rows,
-                         std::vector<int>    new_columns,
-                         std::vector<double> new_values)
+                         std::vector<int>    rows,
+                         std::vector<int>    columns,
+                         std::vector<double> values)
   {
-    rows    = std::move(new_rows);
-    columns = std::move(new_columns);
-    values  = std::move(new_values);
     for (int &i : rows)
       ++i;
     for (int &j : columns)
@@ -98,11 +95,10 @@ namespace Fidus
           break;
         icntl(id, 14) = 2 * std::max(icntl(id, 14), 20);
       }
-    // The entries are not needed to solve (no refinement or error
-    // analysis inside MUMPS).
-    rows    = std::vector<int>();
-    columns = std::vector<int>();
-    values  = std::vector<double>();
+    // The entries go when this returns: MUMPS's solve does not read them
+    // (no refinement or error analysis inside MUMPS).
+    id.irn = id.jcn = id.irn_loc = id.jcn_loc = nullptr;
+    id.a = id.a_loc = nullptr;
     if (infog(id, 1) < 0)
       throw std::runtime_error(
         "MUMPS's factorisation failed (INFOG(1) = " +
@@ -126,9 +122,4 @@ namespace Fidus
     MPI_Bcast(b.begin(), b.size(), MPI_DOUBLE, 0, comm);
   }
 
-  double
-  MumpsSolver::largest_rank_bytes() const
-  {
-    return 1e6 * infog(mumps->id, 21);
-  }
 } // namespace Fidus

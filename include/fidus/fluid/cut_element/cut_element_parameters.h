@@ -40,6 +40,11 @@ namespace Fidus
     void
     check_unused(const std::string &model) const;
 
+    /// Whether the solves are direct in @p dimension D on this run's ranks:
+    /// 'direct', or 'auto' in 2D or on more than one MPI rank.
+    bool
+    direct_solver(unsigned int dimension) const;
+
     /// The minimum gap that 'auto' gives with Fluid/Lubrication correction
     /// (doc/theory/lubrication.md, "With the cut finite element").
     static constexpr double corrected_minimum_gap = 0.02;

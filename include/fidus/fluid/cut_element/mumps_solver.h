@@ -53,7 +53,9 @@ namespace Fidus
     /**
      * Analyse and factorise the matrix of size @p n whose entries on this
      * rank are (@p rows[k], @p columns[k], @p values[k]), 0-based
-     * (collective). Throws std::runtime_error, naming MUMPS's error code,
+     * (collective; the entries are freed when it returns: MUMPS's solve
+     * does not read them). Throws std::runtime_error, naming MUMPS's error
+     * code,
      * if it fails; a numerically singular matrix is error -10. Where MUMPS
      * reports its workspace too small, the factorisation is repeated with
      * twice the relaxation, up to three times.
@@ -69,18 +71,11 @@ namespace Fidus
     void
     solve(dealii::Vector<double> &b);
 
-    /// Bytes MUMPS's factorisation took on the rank that took most
-    /// (INFOG(21), in MB).
-    double
-    largest_rank_bytes() const;
-
   private:
     /// The MUMPS instance, opaque here.
     struct Instance;
     std::unique_ptr<Instance> mumps;
     MPI_Comm                  comm;
-    std::vector<int>          rows, columns;
-    std::vector<double>       values;
   };
 } // namespace Fidus
 
