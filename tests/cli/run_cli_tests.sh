@@ -54,6 +54,12 @@ expect_error "cut element Nitsche parameter 0" "Fluid/Cut Nitsche parameter' has
   "$(base; cut_fluid '  set Cut Nitsche parameter = 0')"
 expect_error "cut element started from zero with the direct solver" "Fluid/Cut initial guess' has the value 'zero' with the direct solver ('Fluid/Cut linear solver = auto' in 2D), which does not read it; allowed: its default, or 'Fluid/Cut linear solver = iterative'" \
   "$(base; cut_fluid '  set Cut initial guess = zero')"
+expect_error "cut element tolerance 1" "Fluid/Cut linear tolerance' has the value 1; allowed: a value in (0, 1)" \
+  "$(base; cut_fluid '  set Cut linear solver = iterative
+  set Cut linear tolerance = 1')"
+expect_error "cut element tolerance with the direct solver" "Fluid/Cut linear tolerance' has the value 1e-06 with the direct solver ('Fluid/Cut linear solver = direct' in 2D), which does not read it; allowed: its default, or 'Fluid/Cut linear solver = iterative'" \
+  "$(base; cut_fluid '  set Cut linear solver = direct
+  set Cut linear tolerance = 1e-6')"
 expect_error "cut entry with the fictitious domain" "Fluid/Cut velocity ghost penalty' is set with 'Fluid/Model = fictitious domain', which does not read it; allowed: its default, or 'Fluid/Model = cut finite element'" \
   "$(base; printf 'subsection Fluid\n  set Cut velocity ghost penalty = 1e-2\nend\n')"
 expect_error "cut element with a lubrication range" "Fluid/Lubrication range' is set with 'Fluid/Model = cut finite element' and 'Fluid/Lubrication correction'; allowed: auto" \
