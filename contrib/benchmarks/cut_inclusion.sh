@@ -13,7 +13,7 @@
 # levels more around the surface; band 0 is a uniform mesh.
 # Env: DIM (2 or 3, default 2), GHOST_VELOCITY, GHOST_PRESSURE (the ghost
 # penalties, default 1e-3), NITSCHE (default 40), LINEAR_SOLVER (direct or
-# iterative; default: iterative in 3D above 40 000 unknowns),
+# iterative; default: iterative in 3D above 15 000 unknowns),
 # VELOCITY_PRECONDITIONER (multigrid, the default, or amg),
 # ITERATIVE_TOLERANCE (default 1e-10), FIDUS_CUT_INCLUSION (the
 # binary; default: built with contrib/build.sh fidus_cut_inclusion).

@@ -42,8 +42,8 @@ namespace Fidus
       "FGMRES with a block preconditioner (a geometric multigrid V-cycle "
       "for the velocities and rigid motions) to 'Cut linear tolerance', "
       "on one rank only; 'auto' (or 'automatic', its former "
-      "name) is iterative in 3D above 40000 unknowns on one rank, where "
-      "the factorisation is slower and takes several GB, and direct "
+      "name) is iterative in 3D above 15000 unknowns on one rank, where "
+      "the factorisation is slower and takes more memory, and direct "
       "otherwise (doc/theory/cut_element.md, 'Solvers').");
     prm.declare_entry(
       "Cut minimum gap",

@@ -208,7 +208,7 @@ namespace Fidus
     setup_dofs_and_constraints();
 
     /// Whether the system goes to the iterative solver (Settings::
-    /// linear_solver; automatic: 3D above 40 000 unknowns).
+    /// linear_solver; automatic: 3D above 15 000 unknowns, one rank).
     bool
     uses_iterative_solver() const;
 

@@ -80,9 +80,9 @@ namespace Fidus
     /// How the linear system is solved.
     enum class LinearSolver
     {
-      /// Iterative in 3D above 40 000 unknowns, where the factorisation
-      /// is slower and takes several GB (doc/cut_element.md, "A geometric
-      /// multigrid for the cut element"); direct otherwise.
+      /// Iterative in 3D above 15 000 unknowns on one rank, where the
+      /// factorisation is slower and takes more memory
+      /// (doc/theory/cut_element.md, "Solvers"); direct otherwise.
       automatic,
       /// MUMPS (MumpsSolver), LDL^T of the symmetric system, over the
       /// ranks of Settings::communicator, with iterative refinement.
