@@ -119,12 +119,13 @@ namespace Fidus
 
 
 
+  template <typename Number>
   void
-  CutCellBlockJacobi::vmult(Vector<double>       &dst,
-                            const Vector<double> &src) const
+  CutCellBlockJacobi::vmult(Vector<Number>       &dst,
+                            const Vector<Number> &src) const
   {
-    dst.equ(1., src);
-    dst.scale(inverse_diagonal);
+    for (unsigned int i = 0; i < dst.size(); ++i)
+      dst[i] = src[i] * inverse_diagonal[i];
     for (unsigned int b = 0; b < n_blocks(); ++b)
       {
         const unsigned int *const r = rows.data() + block_start[b];
@@ -153,4 +154,9 @@ namespace Fidus
           dst[r[p]] += y[p];
       }
   }
+
+  template void
+  CutCellBlockJacobi::vmult(Vector<double> &, const Vector<double> &) const;
+  template void
+  CutCellBlockJacobi::vmult(Vector<float> &, const Vector<float> &) const;
 } // namespace Fidus

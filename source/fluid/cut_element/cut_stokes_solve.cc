@@ -580,8 +580,9 @@ namespace Fidus
         it->value() *= scale[i] * scale[it->column()];
     std::unique_ptr<CutVelocityMultigrid<dim>>   multigrid;
     typename CutVelocityMultigrid<dim>::Settings multigrid_settings;
-    multigrid_settings.cut_cell_blocks = s.cut_cell_blocks;
-    multigrid_settings.smoother_degree = s.smoother_degree;
+    multigrid_settings.cut_cell_blocks  = s.cut_cell_blocks;
+    multigrid_settings.smoother_degree  = s.smoother_degree;
+    multigrid_settings.single_precision = s.single_precision_cycle;
     if (!s.cut_cell_blocks)
       multigrid_settings.smoothing_range = 15.;
     if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)

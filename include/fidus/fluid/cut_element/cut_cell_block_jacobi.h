@@ -49,9 +49,10 @@ namespace Fidus
     initialize(const SparseMatrix<double>                   &a,
                const std::vector<std::vector<unsigned int>> &blocks);
 
-    /// dst = P^-1 src.
+    /// dst = P^-1 src, in double or float (the V-cycle in single precision).
+    template <typename Number>
     void
-    vmult(Vector<double> &dst, const Vector<double> &src) const;
+    vmult(Vector<Number> &dst, const Vector<Number> &src) const;
 
     /// Number of blocks.
     unsigned int

@@ -204,6 +204,9 @@ namespace Fidus
       /// Matrix-vector products per smoothing of the velocity multigrid,
       /// before and after (CutVelocityMultigrid::Settings).
       unsigned int smoother_degree = 2;
+      /// The velocity multigrid's V-cycle in single precision
+      /// (CutVelocityMultigrid::Settings); false: double (for comparisons).
+      bool single_precision_cycle = true;
       /// Bytes the solve may use in all, > 0; 0: what the machine has
       /// available (MemoryBudget). A mesh whose system would not fit
       /// (estimated from its unknowns) throws, naming what to change,

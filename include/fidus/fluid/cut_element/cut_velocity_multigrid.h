@@ -49,6 +49,10 @@ namespace Fidus
    *   Nitsche terms and ghost penalties couple those strongly), before and
    *   after the coarse correction (so one V-cycle is symmetric and serves
    *   CG); the coarsest level is factorised.
+   * - **Single precision** (Settings::single_precision, the default):
+   *   the levels above the coarsest, the prolongations and the smoothing
+   *   run in float, since the cycle's products are bound by the memory
+   *   traffic of the entries; vmult() takes and returns double vectors.
    */
   template <int dim>
   class CutVelocityMultigrid
@@ -67,6 +71,10 @@ namespace Fidus
       /// (CutCellBlockJacobi) on every level above the coarsest; without,
       /// point Jacobi.
       bool cut_cell_blocks = true;
+      /// The V-cycle in single precision above the coarsest level (a
+      /// quarter less FGMRES time in 3D, the same iterations); false:
+      /// double, as before (for comparisons).
+      bool single_precision = true;
     };
 
     /**
@@ -111,9 +119,12 @@ namespace Fidus
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
   private:
-    using Smoother = PreconditionChebyshev<SparseMatrix<double>,
+    using Smoother      = PreconditionChebyshev<SparseMatrix<double>,
                                            Vector<double>,
                                            CutCellBlockJacobi>;
+    using FloatSmoother = PreconditionChebyshev<SparseMatrix<float>,
+                                                Vector<float>,
+                                                CutCellBlockJacobi>;
     /// Whether a surface passes within half a diagonal of @p cell's centre.
     template <typename Cell>
     bool
@@ -132,6 +143,17 @@ namespace Fidus
     v_cycle(const unsigned int    level,
             Vector<double>       &x,
             const Vector<double> &b) const;
+
+    /// The same in single precision (Settings::single_precision).
+    void
+    v_cycle_float(const unsigned int   level,
+                  Vector<float>       &x,
+                  const Vector<float> &b) const;
+
+    /// Copies the levels above the coarsest, the prolongations and the
+    /// smoothers to float, and frees the double ones.
+    void
+    setup_single_precision();
 
     /// The operator of @p level (the finest is the caller's).
     const SparseMatrix<double> &
@@ -152,7 +174,18 @@ namespace Fidus
     std::vector<std::unique_ptr<RowPattern>>           coarse_pattern;
     std::vector<std::unique_ptr<SparseMatrix<double>>> coarse;
     std::vector<std::unique_ptr<Smoother>>             smoother;
-    SparseDirectUMFPACK                                coarsest;
+    /// The smoothers' preconditioners, shared by the float smoothers.
+    std::vector<std::shared_ptr<CutCellBlockJacobi>> block_jacobi;
+    /// With Settings::single_precision: the levels above the coarsest, the
+    /// prolongations, the smoothers and the work vectors in float, and
+    /// the coarsest level's vectors in double.
+    std::vector<std::unique_ptr<SparseMatrix<float>>> level_float,
+      prolongation_float;
+    std::vector<std::unique_ptr<FloatSmoother>> smoother_float;
+    mutable std::vector<Vector<float>>          residual_f, rhs_f, solution_f;
+    mutable Vector<float>                       src_f, dst_f;
+    mutable Vector<double>                      coarse_x, coarse_b;
+    SparseDirectUMFPACK                         coarsest;
     /// Work vectors per level: residual, restricted right-hand side,
     /// coarse correction.
     mutable std::vector<Vector<double>> residual, level_rhs, level_solution;
