@@ -56,6 +56,76 @@ using namespace dealii;
 
 namespace
 {
+  /// The unit square refined @p level times, and twice more around the
+  /// circle of @p radius about @p centre.
+  void
+  make_mesh(Triangulation<2>  &tria,
+            const unsigned int level,
+            const Point<2>    &centre,
+            const double       radius)
+  {
+    GridGenerator::hyper_cube(tria, 0., 1., true);
+    tria.refine_global(level);
+    for (unsigned int pass = 0; pass < 2; ++pass)
+      {
+        for (const auto &cell : tria.active_cell_iterators())
+          if (std::abs(cell->center().distance(centre) - radius) <
+              1.5 * cell->diameter())
+            cell->set_refine_flag();
+        tria.execute_coarsening_and_refinement();
+      }
+  }
+
+
+
+  /// The vector Laplacian on the fluid cells (active FE index 0), with a
+  /// smooth load, constrained rows keeping a diagonal (as in the cut
+  /// element's system).
+  void
+  assemble_laplacian(const DoFHandler<2>             &dofs,
+                     const AffineConstraints<double> &constraints,
+                     SparseMatrix<double>            &system,
+                     Vector<double>                  &rhs)
+  {
+    const FEValuesExtractors::Vector     velocity(0);
+    hp::QCollection<2>                   q(QGauss<2>(3), QGauss<2>(1));
+    hp::FEValues<2>                      values(dofs.get_fe_collection(),
+                           q,
+                           update_values | update_gradients |
+                             update_JxW_values | update_quadrature_points);
+    std::vector<types::global_dof_index> local_dofs;
+    for (const auto &cell : dofs.active_cell_iterators())
+      {
+        if (cell->active_fe_index() != 0)
+          continue;
+        values.reinit(cell);
+        const auto        &v = values.get_present_fe_values();
+        const unsigned int n = cell->get_fe().n_dofs_per_cell();
+        FullMatrix<double> local(n, n);
+        Vector<double>     local_rhs(n);
+        for (unsigned int q = 0; q < v.n_quadrature_points; ++q)
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              for (unsigned int j = 0; j < n; ++j)
+                local(i, j) += scalar_product(v[velocity].gradient(i, q),
+                                              v[velocity].gradient(j, q)) *
+                               v.JxW(q);
+              local_rhs(i) += v[velocity].value(i, q)[0] *
+                              std::sin(7. * v.quadrature_point(q)[1]) *
+                              v.JxW(q);
+            }
+        local_dofs.resize(n);
+        cell->get_dof_indices(local_dofs);
+        constraints.distribute_local_to_global(local,
+                                               local_rhs,
+                                               local_dofs,
+                                               system,
+                                               rhs);
+      }
+  }
+
+
+
   /// CG iterations with the multigrid and the largest difference from the
   /// direct solution (relative), for base level @p level; periodic along x
   /// or walls all round; the hole's surface held at zero velocity or free.
@@ -68,16 +138,7 @@ namespace
     const Point<2>   centre(0.45, 0.52);
     const double     radius = 0.17;
     Triangulation<2> tria(Triangulation<2>::limit_level_difference_at_vertices);
-    GridGenerator::hyper_cube(tria, 0., 1., true);
-    tria.refine_global(level);
-    for (unsigned int pass = 0; pass < 2; ++pass)
-      {
-        for (const auto &cell : tria.active_cell_iterators())
-          if (std::abs(cell->center().distance(centre) - radius) <
-              1.5 * cell->diameter())
-            cell->set_refine_flag();
-        tria.execute_coarsening_and_refinement();
-      }
+    make_mesh(tria, level, centre, radius);
 
     const FESystem<2>   taylor_hood(FE_Q<2>(2), 2, FE_Q<2>(1), 1);
     const FESystem<2>   nothing(FE_Nothing<2>(), 2, FE_Nothing<2>(), 1);
@@ -139,42 +200,9 @@ namespace
     DoFTools::make_sparsity_pattern(dofs, dsp, constraints, true);
     SparsityPattern pattern;
     pattern.copy_from(dsp);
-    SparseMatrix<double>                 system(pattern);
-    Vector<double>                       rhs(dofs.n_dofs());
-    hp::QCollection<2>                   q(QGauss<2>(3), QGauss<2>(1));
-    hp::FEValues<2>                      values(fe,
-                           q,
-                           update_values | update_gradients |
-                             update_JxW_values | update_quadrature_points);
-    std::vector<types::global_dof_index> local_dofs;
-    for (const auto &cell : dofs.active_cell_iterators())
-      {
-        if (cell->active_fe_index() != 0)
-          continue;
-        values.reinit(cell);
-        const auto        &v = values.get_present_fe_values();
-        const unsigned int n = cell->get_fe().n_dofs_per_cell();
-        FullMatrix<double> local(n, n);
-        Vector<double>     local_rhs(n);
-        for (unsigned int q = 0; q < v.n_quadrature_points; ++q)
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              for (unsigned int j = 0; j < n; ++j)
-                local(i, j) += scalar_product(v[velocity].gradient(i, q),
-                                              v[velocity].gradient(j, q)) *
-                               v.JxW(q);
-              local_rhs(i) += v[velocity].value(i, q)[0] *
-                              std::sin(7. * v.quadrature_point(q)[1]) *
-                              v.JxW(q);
-            }
-        local_dofs.resize(n);
-        cell->get_dof_indices(local_dofs);
-        constraints.distribute_local_to_global(local,
-                                               local_rhs,
-                                               local_dofs,
-                                               system,
-                                               rhs);
-      }
+    SparseMatrix<double> system(pattern);
+    Vector<double>       rhs(dofs.n_dofs());
+    assemble_laplacian(dofs, constraints, system, rhs);
 
     // Scaled, and the velocity block in its own numbering.
     Vector<double> scale(dofs.n_dofs());

@@ -283,8 +283,11 @@ namespace Fidus
                             local) :
             std::vector<std::vector<unsigned int>>());
         block_jacobi.push_back(data.preconditioner);
-        smoother.push_back(std::make_unique<Smoother>());
-        smoother.back()->initialize(a, data);
+        if (!settings.single_precision)
+          {
+            smoother.push_back(std::make_unique<Smoother>());
+            smoother.back()->initialize(a, data);
+          }
       }
     coarsest.initialize(level_matrix(n_levels - 1));
     if (settings.single_precision)
@@ -349,7 +352,6 @@ namespace Fidus
     src_f.reinit(finest->m());
     dst_f.reinit(finest->m());
     // The double copies are no longer read (the finest is the caller's).
-    smoother.clear();
     for (auto &p : prolongation)
       p->clear();
     for (auto &c : coarse)
