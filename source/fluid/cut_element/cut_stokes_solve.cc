@@ -429,9 +429,15 @@ namespace Fidus
                        scale[it->column()];
           scale[i] = schur > 0. ? 1. / std::sqrt(schur) : 1.;
         }
-    for (unsigned int i = 0; i < n_total; ++i)
-      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-        it->value() *= scale[i] * scale[it->column()];
+    // Every row on its own: on the threads (a 3D system has tens of
+    // millions of entries).
+    on_row_ranges(n_total,
+                  1,
+                  [&](const unsigned int first, const unsigned int last) {
+                    for (unsigned int i = first; i < last; ++i)
+                      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+                        it->value() *= scale[i] * scale[it->column()];
+                  });
   }
 
   template <int dim>

@@ -85,6 +85,36 @@ namespace Fidus
     }
 
     /**
+     * fill() for a caller that already knows each row: row i has
+     * @p lengths[i] entries (a square pattern's diagonal counted), and
+     * @p write(i, columns), called once per row from the threads, writes
+     * its columns in ascending order to columns, without the diagonal of
+     * a square pattern (which goes first by itself). Nothing is counted
+     * or sorted here: the cut element's solver copies the blocks of its
+     * system this way, whose rows come out in order.
+     */
+    template <typename Write>
+    void
+    fill_ordered(const unsigned int               n_rows,
+                 const unsigned int               n_cols,
+                 const std::vector<unsigned int> &lengths,
+                 const Write                     &write)
+    {
+      const bool square = n_rows == n_cols;
+      SparsityPattern::reinit(n_rows, n_cols, lengths);
+      if (n_rows == 0 || n_cols == 0)
+        return;
+      on_row_ranges(n_rows,
+                    4,
+                    [&](const unsigned int first, const unsigned int last) {
+                      for (unsigned int i = first; i < last; ++i)
+                        write(i,
+                              colnums.get() + rowstart[i] + (square ? 1 : 0));
+                    });
+      compressed = true;
+    }
+
+    /**
      * fill() from compressed rows: row i's columns, in any order, are
      * @p columns[@p start[i]] to @p columns[@p start[i + 1]] (exclusive).
      */
