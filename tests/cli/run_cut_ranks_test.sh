@@ -14,7 +14,9 @@
 #  3. 3D, two spheres in linear shear, the direct solver ('auto' takes it
 #     on more than one rank; on one, set by hand, where 'auto' would
 #     iterate to its tolerance): 1 against 2 ranks;
-#  4. the iterative solver on 2 ranks is refused, naming the entry.
+#  4. the iterative solver on 2 ranks is refused, naming the entry;
+#  5. 3D with 'auto' on 2 ranks (which then factorises) is warned about,
+#     once; with 'direct' set, not.
 # Usage: run_cut_ranks_test.sh path/to/fidus path/to/repo
 . "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -91,6 +93,23 @@ check "the iterative solver on 2 ranks exits non-zero" [ $status -ne 0 ]
 check "its message names the entry and what is allowed" \
   grep -q "entry 'Fluid/Cut linear solver' is 'iterative' on 2 MPI ranks; allowed: 'direct' or 'auto'" \
   iterative.log
+
+# 5. 'auto' in 3D on more than one rank factorises: said once. One step
+#    of one small sphere.
+scene sphere 3 "linear shear" 0.15 "0.45, 0.55, 0.5" "" 2,3 |
+  sed 's/End time = 0.4/End time = 0.2/' > sphere.prm
+mpirun -np 2 "$fidus" sphere.prm > sphere-auto.log 2>&1
+status=$?
+check "3D 'auto' on 2 ranks runs" [ $status -eq 0 ]
+check "and warns once that it factorises over the ranks" \
+  [ "$(grep -c "warning: the cut element runs on 2 MPI ranks with 'Fluid/Cut linear solver = auto'" sphere-auto.log)" = 1 ]
+sed 's/set Cut minimum gap = 1e-3/&\n  set Cut linear solver = direct/' \
+  sphere.prm > sphere-direct.prm
+mpirun -np 2 "$fidus" sphere-direct.prm > sphere-direct.log 2>&1
+status=$?
+check "3D 'direct' on 2 ranks runs" [ $status -eq 0 ]
+check "and does not warn" \
+  [ "$(grep -c "warning: the cut element runs on" sphere-direct.log)" = 0 ]
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]
