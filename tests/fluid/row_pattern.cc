@@ -5,10 +5,14 @@
 // pattern: every row's columns in the same order (the diagonal first in
 // the square one), the same entries and row lengths, the same lookups,
 // and a matrix on each must multiply alike. The rows are filled in more
-// ranges than there are threads, so the ranges' seams are crossed.
+// ranges than there are threads, so the ranges' seams are crossed. Both
+// fills are checked: fill() from the unsorted rows, and fill_ordered()
+// from the row lengths and each row's columns in order (without the
+// diagonal of the square pattern).
 
 #include "../fidus_test.h"
 
+#include <algorithm>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -21,31 +25,14 @@ using Fidus::RowPattern;
 
 namespace
 {
+  /// @p built against @p expected, both from @p rows.
   void
-  check(const std::string &name, const unsigned int m, const unsigned int n)
+  compare(const std::string                            &name,
+          const SparsityPattern                        &expected,
+          const SparsityPattern                        &built,
+          const std::vector<std::vector<unsigned int>> &rows)
   {
-    // Rows of random columns, each column once, in random order; every
-    // seventh row empty.
-    std::mt19937                           random(m + 7 * n);
-    std::vector<std::vector<unsigned int>> rows(m);
-    for (unsigned int i = 0; i < m; ++i)
-      if (i % 7 != 3)
-        {
-          std::vector<unsigned int> all(n);
-          for (unsigned int j = 0; j < n; ++j)
-            all[j] = j;
-          std::shuffle(all.begin(), all.end(), random);
-          all.resize(1 + random() % std::min(n, 40u));
-          rows[i] = all;
-        }
-    SparsityPattern expected;
-    expected.copy_from(m, n, rows.begin(), rows.end());
-    RowPattern built;
-    built.fill(m, n, [&](const unsigned int i, const auto &f) {
-      for (const unsigned int j : rows[i])
-        f(j);
-    });
-
+    const unsigned int m = expected.n_rows(), n = expected.n_cols();
     unsigned int differing_rows = 0, with_diagonal = 0, missing_lookups = 0;
     for (unsigned int i = 0; i < m; ++i)
       {
@@ -102,6 +89,55 @@ namespace
     b.vmult(yb, x);
     ya -= yb;
     check_range(name + ": |A x - B x|", ya.linfty_norm(), 0., 0.);
+  }
+
+
+  void
+  check(const std::string &name, const unsigned int m, const unsigned int n)
+  {
+    // Rows of random columns, each column once, in random order; every
+    // seventh row empty.
+    std::mt19937                           random(m + 7 * n);
+    std::vector<std::vector<unsigned int>> rows(m);
+    for (unsigned int i = 0; i < m; ++i)
+      if (i % 7 != 3)
+        {
+          std::vector<unsigned int> all(n);
+          for (unsigned int j = 0; j < n; ++j)
+            all[j] = j;
+          std::shuffle(all.begin(), all.end(), random);
+          all.resize(1 + random() % std::min(n, 40u));
+          rows[i] = all;
+        }
+    SparsityPattern expected;
+    expected.copy_from(m, n, rows.begin(), rows.end());
+    RowPattern built;
+    built.fill(m, n, [&](const unsigned int i, const auto &f) {
+      for (const unsigned int j : rows[i])
+        f(j);
+    });
+    compare(name, expected, built, rows);
+
+    // The same rows, each sorted, through fill_ordered(): a square
+    // pattern's lengths count its diagonal, given or not.
+    std::vector<unsigned int> lengths(m);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        std::sort(rows[i].begin(), rows[i].end());
+        const bool diagonal =
+          std::binary_search(rows[i].begin(), rows[i].end(), i);
+        lengths[i] = rows[i].size() + (m == n && !diagonal ? 1 : 0);
+      }
+    RowPattern ordered;
+    ordered.fill_ordered(m,
+                         n,
+                         lengths,
+                         [&](const unsigned int i, unsigned int *columns) {
+                           for (const unsigned int j : rows[i])
+                             if (m != n || j != i)
+                               *columns++ = j;
+                         });
+    compare(name + ", ordered", expected, ordered, rows);
   }
 } // namespace
 
