@@ -377,7 +377,6 @@ namespace Fidus
     for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
       if (taylor_hood.system_to_component_index(k).first == dim)
         pressure_shapes.push_back(k);
-    local_pressure_mean.reinit(pressure_shapes.size());
     pressure_dof_indices.resize(pressure_shapes.size());
     pressure_mean.reinit(n_total);
     if (iterative)
@@ -399,7 +398,6 @@ namespace Fidus
     solution.reinit(n_total);
 
     n_ext = n_local + n_rigid;
-    local_rhs.reinit(n_ext);
   }
 
   template <int dim>

@@ -429,10 +429,25 @@ namespace Fidus
                 CellScratch         &scratch,
                 CellCopy            &copy) const;
 
-    /// Add one cell's matrices to the global ones (and the pressure mass
-    /// matrix for the iterative solver).
+    /// Add one cut cell's matrices to the global ones (distribute()).
     void
     distribute_cell(const CellCopy &copy);
+
+    /// Add the matrix @p local and the pressure mass @p local_pressure of
+    /// a cell with the unknowns @p dofs to the system, its right-hand side
+    /// (the constraints' inhomogeneities), the constant pressure's mass
+    /// and, for the iterative solver, the pressure mass matrix: the rows of
+    /// rows_written() for a full cell. Safe from several threads for
+    /// cells whose rows differ.
+    void
+    distribute(const FullMatrix<double>                   &local,
+               const FullMatrix<double>                   &local_pressure,
+               const std::vector<types::global_dof_index> &dofs);
+
+    /// The rows of the global matrices that adding a full @p cell writes:
+    /// its DoFs and those its constrained ones stand for.
+    std::vector<types::global_dof_index>
+    rows_written(const cell_iterator &cell) const;
 
     /// The ghost-penalty matrix of one face.
     void
@@ -562,19 +577,16 @@ namespace Fidus
     /// over the fluid (zero but on the unconstrained pressures), and m'
     /// = D m / (1^T m)^(1/2) of the scaled system (solve_linear_system()).
     Vector<double> pressure_mean, scaled_mean;
-    /// This cell's part of pressure_mean.
-    Vector<double> local_pressure_mean;
     /// The pressure shape functions of a fluid cell.
     std::vector<unsigned int> pressure_shapes;
     Vector<double>            rhs, solution;
 
     /// The extended indices of a fluid cell (its shape functions and its
-    /// particle's rigid unknowns); a zero right-hand side on them; the
-    /// pressure DoFs of a cell.
+    /// particle's rigid unknowns); the pressure DoFs of a cell.
     unsigned int                         n_ext = 0;
-    Vector<double>                       local_rhs;
     std::vector<types::global_dof_index> pressure_dof_indices;
-    /// A full fluid cell's matrix and pressure mass matrix, per level.
+    /// A full fluid cell's matrix (on its own DoFs) and pressure mass
+    /// matrix, per level.
     std::map<int, std::pair<FullMatrix<double>, FullMatrix<double>>> full_cells;
 
     /// The cut cells' quadratures, for the stresslets after the solve.
