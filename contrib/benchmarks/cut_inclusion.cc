@@ -31,8 +31,9 @@ namespace
   /// solver's choice), ITERATIVE_TOLERANCE its tolerance,
   /// VELOCITY_PRECONDITIONER = amg | multigrid, CUT_CELL_BLOCKS = 0 for
   /// the multigrid's smoother without cut-cell blocks, SMOOTHER_DEGREE its
-  /// products per smoothing, GAP_LAPLACIAN the weight of the thin gaps'
-  /// pressure Laplacian (0: the pressure mass alone), GAP_THRESHOLD its
+  /// products per smoothing, SEPARATE_COMPONENTS = 0 for its 3D levels
+  /// built from the full velocity block, GAP_LAPLACIAN the weight of the thin
+  /// gaps' pressure Laplacian (0: the pressure mass alone), GAP_THRESHOLD its
   /// region in reduced radii, NITSCHE, GHOST_VELOCITY and GHOST_PRESSURE
   /// the discretisation's penalties (default: the solver's).
   template <int dim>
@@ -57,6 +58,8 @@ namespace
       s.gap_threshold = std::atof(v);
     if (const char *v = std::getenv("CUT_CELL_BLOCKS"))
       s.cut_cell_blocks = std::string(v) != "0";
+    if (const char *v = std::getenv("SEPARATE_COMPONENTS"))
+      s.separate_components = std::string(v) != "0";
     if (const char *v = std::getenv("SMOOTHER_DEGREE"))
       s.smoother_degree = std::atoi(v);
     if (const char *v = std::getenv("NITSCHE"))

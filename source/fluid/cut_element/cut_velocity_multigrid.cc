@@ -170,6 +170,11 @@ namespace Fidus
     const unsigned int               n_rigid)
   {
     finest = &matrix;
+    if (settings.separate_components)
+      {
+        separate_components(matrix, velocity_unknowns);
+        finest = &separated;
+      }
     prolongation_pattern.clear();
     prolongation.clear();
     coarse_pattern.clear();
@@ -310,6 +315,62 @@ namespace Fidus
 
   template <int dim>
   void
+  CutVelocityMultigrid<dim>::separate_components(
+    const SparseMatrix<double>      &matrix,
+    const std::vector<unsigned int> &velocity_unknowns)
+  {
+    // Each row's velocity component (the rigid rows have none and keep
+    // all their entries, so the particles stay coupled to their fluid).
+    std::vector<unsigned char>           dof_component(system.n_dofs(), 255);
+    std::vector<types::global_dof_index> indices;
+    for (const auto &cell : system.active_cell_iterators())
+      {
+        const auto &fe = cell->get_fe();
+        indices.resize(fe.n_dofs_per_cell());
+        cell->get_dof_indices(indices);
+        for (unsigned int i = 0; i < indices.size(); ++i)
+          dof_component[indices[i]] = fe.system_to_component_index(i).first;
+      }
+    const unsigned int         n_u = velocity_unknowns.size();
+    std::vector<unsigned char> component(matrix.m(), 255);
+    for (unsigned int k = 0; k < n_u; ++k)
+      component[k] = dof_component[velocity_unknowns[k]];
+    const auto keep = [&](const unsigned int i, const unsigned int j) {
+      return i >= n_u || j >= n_u || component[i] == component[j];
+    };
+    separated_pattern
+      .fill(matrix.m(), matrix.n(), [&](const unsigned int i, const auto &f) {
+        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+          if (keep(i, it->column()))
+            f(it->column());
+      });
+    separated.reinit(separated_pattern);
+    // Both rows hold their diagonal first and then ascending columns, and
+    // the kept entries are a subsequence of the block's: copied in one
+    // walk.
+    on_row_ranges(matrix.m(),
+                  4,
+                  [&](const unsigned int first, const unsigned int last) {
+                    for (unsigned int i = first; i < last; ++i)
+                      {
+                        auto out = separated.begin(i);
+                        for (auto it = matrix.begin(i); it != matrix.end(i);
+                             ++it)
+                          if (keep(i, it->column()))
+                            {
+                              AssertThrow(out->column() == it->column(),
+                                          ExcInternalError());
+                              out->value() = it->value();
+                              ++out;
+                            }
+                      }
+                  });
+  }
+
+
+
+  template <int dim>
+  void
   CutVelocityMultigrid<dim>::setup_single_precision()
   {
     // The levels, the prolongations and the smoothers in float: the
@@ -356,6 +417,8 @@ namespace Fidus
       p->clear();
     for (auto &c : coarse)
       c->clear();
+    // (The float finest level keeps the separated pattern.)
+    separated.clear();
   }
 
 

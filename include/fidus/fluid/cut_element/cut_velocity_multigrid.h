@@ -49,6 +49,15 @@ namespace Fidus
    *   Nitsche terms and ghost penalties couple those strongly), before and
    *   after the coarse correction (so one V-cycle is symmetric and serves
    *   CG); the coarsest level is factorised.
+   * - **Separate components** (Settings::separate_components): the
+   *   levels are built from the velocity block without its couplings
+   *   between different components, A_cc for each component c plus the
+   *   rigid rows and columns whole. With the symmetric gradient,
+   *   v^T A v = |grad v|^2 + |div v|^2 and v^T A_sep v = |grad v|^2 +
+   *   sum_c |d_c v_c|^2 for a velocity held on the boundary, both between
+   *   |grad v|^2 and 2 |grad v|^2: the cycle approximates A^-1 within a
+   *   factor 2, with a third of the entries in 3D (half in 2D) on every
+   *   level. The system FGMRES solves is unchanged.
    * - **Single precision** (Settings::single_precision, the default):
    *   the levels above the coarsest, the prolongations and the smoothing
    *   run in float, since the cycle's products are bound by the memory
@@ -75,6 +84,12 @@ namespace Fidus
       /// quarter less FGMRES time in 3D, the same iterations); false:
       /// double, as before (for comparisons).
       bool single_precision = true;
+      /// The hierarchy built on the velocity block with the couplings
+      /// between different velocity components dropped (the rigid rows
+      /// kept whole): a third of the entries in 3D on every level, which
+      /// the full block bounds within a factor 2 where the velocity is
+      /// held on the boundary (Korn). false: the full block, as before.
+      bool separate_components = false;
     };
 
     /**
@@ -167,6 +182,14 @@ namespace Fidus
     std::vector<std::pair<Point<dim>, double>> surfaces;
 
     const SparseMatrix<double> *finest = nullptr;
+    /// With Settings::separate_components: the finest level's operator,
+    /// the caller's block without its couplings between components.
+    RowPattern           separated_pattern;
+    SparseMatrix<double> separated;
+    /// Make #separated from @p matrix (rows as in initialize()).
+    void
+    separate_components(const SparseMatrix<double>      &matrix,
+                        const std::vector<unsigned int> &velocity_unknowns);
     /// prolongation[l]: level l + 1 to level l.
     std::vector<std::unique_ptr<SparsityPattern>>      prolongation_pattern;
     std::vector<std::unique_ptr<SparseMatrix<double>>> prolongation;
