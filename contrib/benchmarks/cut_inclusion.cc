@@ -31,10 +31,11 @@ namespace
   /// solver's choice), ITERATIVE_TOLERANCE its tolerance,
   /// VELOCITY_PRECONDITIONER = amg | multigrid, CUT_CELL_BLOCKS = 0 for
   /// the multigrid's smoother without cut-cell blocks, SMOOTHER_DEGREE its
-  /// products per smoothing, SEPARATE_COMPONENTS = 0 for its 3D levels
-  /// built from the full velocity block, GAP_LAPLACIAN the weight of the thin
-  /// gaps' pressure Laplacian (0: the pressure mass alone), GAP_THRESHOLD its
-  /// region in reduced radii, NITSCHE, GHOST_VELOCITY and GHOST_PRESSURE
+  /// products per smoothing, SEPARATE_COMPONENTS = 0 | 1 for its levels
+  /// built from the full velocity block or from its components separated
+  /// (default: separated in 3D, full in 2D), GAP_LAPLACIAN the weight of the
+  /// thin gaps' pressure Laplacian (0: the pressure mass alone), GAP_THRESHOLD
+  /// its region in reduced radii, NITSCHE, GHOST_VELOCITY and GHOST_PRESSURE
   /// the discretisation's penalties (default: the solver's).
   template <int dim>
   void

@@ -19,8 +19,9 @@
 #   PAIR_ANGLE (the held pairs' line of centres, degrees below the x axis;
 #   default 45), NITSCHE (the Nitsche parameter; default the solver's,
 #   100), SMOOTHER_DEGREE (the velocity multigrid's products per
-#   smoothing; default 2), SEPARATE_COMPONENTS (0: the 3D multigrid's
-#   levels from the full velocity block, not its components separated),
+#   smoothing; default 2), SEPARATE_COMPONENTS (0: the multigrid's levels
+#   from the full velocity block, 1: from its components separated;
+#   default: separated in 3D, full in 2D),
 #   DEAL_II_NUM_THREADS (the binary takes the machine's cores as threads,
 #   as fidus's cut element does on its one rank; 1 for a single thread).
 set -euo pipefail

@@ -584,13 +584,10 @@ namespace Fidus
         it->value() *= scale[i] * scale[it->column()];
     std::unique_ptr<CutVelocityMultigrid<dim>>   multigrid;
     typename CutVelocityMultigrid<dim>::Settings multigrid_settings;
-    multigrid_settings.cut_cell_blocks  = s.cut_cell_blocks;
-    multigrid_settings.smoother_degree  = s.smoother_degree;
-    multigrid_settings.single_precision = s.single_precision_cycle;
-    // In 3D the separated hierarchy took a fifth off a solve (more
-    // iterations, each cheaper); in 2D it saved no time and took a fifth
-    // more iterations (doc/theory/cut_element.md, "Solvers").
-    multigrid_settings.separate_components = s.separate_components && dim == 3;
+    multigrid_settings.cut_cell_blocks     = s.cut_cell_blocks;
+    multigrid_settings.smoother_degree     = s.smoother_degree;
+    multigrid_settings.single_precision    = s.single_precision_cycle;
+    multigrid_settings.separate_components = s.separate_components;
     if (!s.cut_cell_blocks)
       multigrid_settings.smoothing_range = 15.;
     if (s.velocity_preconditioner == VelocityPreconditioner::multigrid)
