@@ -165,28 +165,30 @@ namespace Fidus
     // (rows: velocities, then rigid unknowns), B and the pressure block.
     // Otherwise A_uu goes to the AMG, with B^T and A_Vu beside it.
     const auto transposed_divergence =
-      block(of_kind(1), n_p, coupling_sparsity, coupling);
+      block(of_kind(1), n_p, blocks->bt_pattern, coupling);
+    const auto pressures =
+      block(of_kind(1), n_p, blocks->p_pattern, pressure_block);
     if (multigrid)
       {
-        copy_rows(matrix,
+        copy_rows(*matrix,
                   velocity_and_rigid,
-                  block(of_k, n_u + n_v, velocity_sparsity, velocity_matrix),
+                  block(of_k, n_u + n_v, blocks->k_pattern, velocity_matrix),
                   transposed_divergence);
-        copy_rows(
-          matrix,
-          pressure,
-          block(of_k, n_u + n_v, divergence_sparsity, divergence),
-          block(of_kind(1), n_p, pressure_block_sparsity, pressure_block));
+        copy_rows(*matrix,
+                  pressure,
+                  block(of_k, n_u + n_v, blocks->b_pattern, divergence),
+                  pressures);
       }
     else
       {
-        copy_rows(matrix,
+        copy_rows(*matrix,
                   velocity,
-                  block(of_kind(0), n_u, velocity_sparsity, velocity_matrix));
-        copy_rows(matrix, velocity_and_rigid, transposed_divergence);
-        copy_rows(matrix,
+                  block(of_kind(0), n_u, blocks->k_pattern, velocity_matrix));
+        copy_rows(*matrix, velocity_and_rigid, transposed_divergence);
+        copy_rows(*matrix,
                   rigid,
                   block(of_kind(0), n_u, rigid_sparsity, rigid_coupling));
+        copy_rows(*matrix, pressure, pressures);
       }
   }
 
@@ -211,10 +213,11 @@ namespace Fidus
         dsp.add(local[i], local[i]);
         if (layout.constrained[i])
           continue;
-        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-          if (layout.kind[it->column()] == 1 &&
-              !layout.constrained[it->column()])
-            dsp.add(local[i], local[it->column()]);
+        for (auto it = pressure_block.begin(local[i]);
+             it != pressure_block.end(local[i]);
+             ++it)
+          if (!layout.constrained[pressure[it->column()]])
+            dsp.add(local[i], it->column());
         for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
           if (layout.kind[it->column()] == 1 &&
               !layout.constrained[it->column()])
@@ -228,13 +231,15 @@ namespace Fidus
           {
             pressure_schur.set(local[i], local[i], 1.);
             constrained_pressures.push_back(local[i]);
-            constrained_diagonal.push_back(matrix.el(i, i));
+            constrained_diagonal.push_back(
+              pressure_block.diag_element(local[i]));
             continue;
           }
-        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-          if (layout.kind[it->column()] == 1 &&
-              !layout.constrained[it->column()])
-            pressure_schur.add(local[i], local[it->column()], -it->value());
+        for (auto it = pressure_block.begin(local[i]);
+             it != pressure_block.end(local[i]);
+             ++it)
+          if (!layout.constrained[pressure[it->column()]])
+            pressure_schur.add(local[i], it->column(), -it->value());
         for (auto it = pressure_mass.begin(i); it != pressure_mass.end(i); ++it)
           if (layout.kind[it->column()] == 1 &&
               !layout.constrained[it->column()])
@@ -363,7 +368,7 @@ namespace Fidus
         statistics.setup_iterations += control.last_step();
         rigid_coupling.vmult(product, w[k]);
         for (unsigned int l = 0; l < n_v; ++l)
-          schur(l, k) = matrix.el(rigid[l], rigid[k]) - product[l];
+          schur(l, k) = matrix->el(rigid[l], rigid[k]) - product[l];
       }
     rigid_schur_inverse.reinit(n_v, n_v);
     rigid_schur_inverse.invert(schur);
@@ -405,11 +410,11 @@ namespace Fidus
     const auto for_ghost_penalty = [&](const auto &f) {
       for (unsigned int g = 0; g < n_g; ++g)
         {
-          const unsigned int i = pressure[gap_pressures[g]];
-          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-            if (layout.kind[it->column()] == 1 &&
-                gap_index[local[it->column()]] >= 0)
-              f(g, gap_index[local[it->column()]], -it->value());
+          const unsigned int i = gap_pressures[g];
+          for (auto it = pressure_block.begin(i); it != pressure_block.end(i);
+               ++it)
+            if (gap_index[it->column()] >= 0)
+              f(g, gap_index[it->column()], -it->value());
         }
     };
     DynamicSparsityPattern dsp(n_g, n_g);
@@ -460,11 +465,55 @@ namespace Fidus
     const Layout                &layout,
     CutVelocityMultigrid<dim>   *multigrid,
     const std::function<void()> &release)
-    : matrix(matrix)
+    : matrix(&matrix)
+    , blocks(std::make_unique<CutSystemBlocks>())
+    , velocity_matrix(blocks->k)
+    , coupling(blocks->bt)
+    , divergence(blocks->b)
+    , pressure_block(blocks->p)
     , multigrid(multigrid)
   {
-    Timer              timer;
-    const unsigned int n = matrix.m();
+    Timer timer;
+    number_unknowns(layout);
+    extract_blocks(layout);
+    statistics.blocks_seconds = timer.wall_time();
+    setup(pressure_mass, layout, release);
+    statistics.setup_seconds = timer.wall_time();
+  }
+
+
+
+  template <int dim>
+  CutSaddlePointSolver<dim>::CutSaddlePointSolver(
+    std::unique_ptr<CutSystemBlocks> system_blocks,
+    const SparseMatrix<double>      &pressure_mass,
+    const Layout                    &layout,
+    CutVelocityMultigrid<dim>       &multigrid,
+    const std::function<void()>     &release)
+    : matrix(nullptr)
+    , blocks(std::move(system_blocks))
+    , velocity_matrix(blocks->k)
+    , coupling(blocks->bt)
+    , divergence(blocks->b)
+    , pressure_block(blocks->p)
+    , multigrid(&multigrid)
+  {
+    Timer timer;
+    number_unknowns(layout);
+    AssertThrow(blocks->kind == layout.kind,
+                ExcMessage("The cut element's blocks and its layout differ "
+                           "in the kinds of the unknowns."));
+    setup(pressure_mass, layout, release);
+    statistics.setup_seconds = timer.wall_time();
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::number_unknowns(const Layout &layout)
+  {
+    const unsigned int n = layout.kind.size();
     local.resize(n);
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -474,19 +523,27 @@ namespace Fidus
         local[i]   = list.size();
         list.push_back(i);
       }
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::setup(const SparseMatrix<double>  &pressure_mass,
+                                   const Layout                &layout,
+                                   const std::function<void()> &release)
+  {
     const unsigned int n_u = velocity.size(), n_p = pressure.size(),
                        n_v = rigid.size();
 
     // The set-up's parts, for the verbose output.
+    Timer      timer;
     double     last = 0.;
     const auto lap  = [&]() {
       const double now = timer.wall_time(), spent = now - last;
       last = now;
       return spent;
     };
-    extract_blocks(layout);
-    statistics.blocks_seconds = lap();
-
     build_pressure_schur(pressure_mass, layout);
     pressure_jacobi.initialize(pressure_schur);
     build_gap_laplacian(layout);
@@ -523,7 +580,6 @@ namespace Fidus
         x_p.reinit(n_p);
         y_p.reinit(n_p);
       }
-    statistics.setup_seconds = timer.wall_time();
   }
 
 
@@ -534,7 +590,7 @@ namespace Fidus
                                           const Vector<double> &src) const
   {
     if (!multigrid)
-      matrix.vmult(dst, src);
+      matrix->vmult(dst, src);
     else
       {
         // [K B^T; B P] [x_K; x_p] by the blocks, in the system's numbering.

@@ -362,7 +362,12 @@ namespace Fidus
   void
   CutStokesSolve<dim>::setup_system()
   {
-    matrix.reinit(sparsity);
+    const IndexSet pressure_dofs =
+      DoFTools::extract_dofs(dof_handler,
+                             fe_collection.component_mask(pressure));
+    is_pressure.assign(n_total, false);
+    for (const auto i : pressure_dofs)
+      is_pressure[i] = true;
     // Between sliding walls, the unconstrained rows of the walls too: the
     // walls' stress is the residual of their DoFs' rows, which the
     // constrained matrix no longer has.
@@ -371,9 +376,24 @@ namespace Fidus
         make_wall_rows();
         unconstrained.reinit(wall_sparsity);
       }
+    // The iterative solver with the multigrid keeps the system as its
+    // blocks: assembled into them, it is never held whole (the system and
+    // its blocks side by side were the solve's peak).
+    iterative = uses_iterative_solver();
+    if (iterative &&
+        s.velocity_preconditioner == VelocityPreconditioner::multigrid)
+      {
+        std::vector<unsigned char> kind(n_total, 2);
+        for (unsigned int i = 0; i < n_fluid; ++i)
+          kind[i] = is_pressure[i] ? 1 : 0;
+        blocks = std::make_unique<CutSystemBlocks>();
+        blocks->reinit(sparsity, kind);
+        sparsity.reinit(0, 0, 0);
+      }
+    else
+      matrix.reinit(sparsity);
     // The iterative solver's pressure preconditioner takes the pressure
     // mass matrix over the fluid, on the pressures' own pattern.
-    iterative = uses_iterative_solver();
     for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
       if (taylor_hood.system_to_component_index(k).first == dim)
         pressure_shapes.push_back(k);
@@ -404,27 +424,30 @@ namespace Fidus
   void
   CutStokesSolve<dim>::scale_system()
   {
-    const IndexSet pressure_dofs =
-      DoFTools::extract_dofs(dof_handler,
-                             fe_collection.component_mask(pressure));
-    is_pressure.assign(n_total, false);
-    for (const auto i : pressure_dofs)
-      is_pressure[i] = true;
+    // f(j, value) on row i's entries, whether the system is one matrix
+    // or its blocks.
+    const auto for_row = [this](const unsigned int i, const auto &f) {
+      if (blocks)
+        blocks->for_row(i, f);
+      else
+        for (auto it = matrix.begin(i), end = matrix.end(i); it != end; ++it)
+          f(it->column(), it->value());
+    };
     scale.reinit(n_total);
     for (unsigned int i = 0; i < n_total; ++i)
       if (!is_pressure[i])
         {
-          const double d = std::abs(matrix.diag_element(i));
+          const double d = std::abs(system_diagonal(i));
           scale[i]       = d > 0. ? 1. / std::sqrt(d) : 1.;
         }
     for (unsigned int i = 0; i < n_total; ++i)
       if (is_pressure[i])
         {
-          double schur = std::abs(matrix.diag_element(i));
-          for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-            if (!is_pressure[it->column()])
-              schur += it->value() * it->value() * scale[it->column()] *
-                       scale[it->column()];
+          double schur = std::abs(system_diagonal(i));
+          for_row(i, [&](const unsigned int j, const double value) {
+            if (!is_pressure[j])
+              schur += value * value * scale[j] * scale[j];
+          });
           scale[i] = schur > 0. ? 1. / std::sqrt(schur) : 1.;
         }
     // Every row on its own: on the threads (a 3D system has tens of
@@ -433,8 +456,9 @@ namespace Fidus
                   1,
                   [&](const unsigned int first, const unsigned int last) {
                     for (unsigned int i = first; i < last; ++i)
-                      for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-                        it->value() *= scale[i] * scale[it->column()];
+                      for_row(i, [&](const unsigned int j, auto &&value) {
+                        value *= scale[i] * scale[j];
+                      });
                   });
   }
 
@@ -606,26 +630,33 @@ namespace Fidus
     // The start reads the constrained rows' diagonal, before the system
     // goes.
     const bool guessed = initial_guess(layout, scaled_rhs, scaled_solution);
-    // With the multigrid, the solver keeps the system in its blocks, and
-    // the system itself is freed before the multigrid's levels are built:
-    // the system and its blocks side by side were a third of the peak.
-    CutSaddlePointSolver<dim> solver(matrix,
-                                     pressure_mass,
-                                     layout,
-                                     multigrid.get(),
-                                     [this]() {
-                                       matrix.clear();
-                                       sparsity.reinit(0, 0, 0);
-                                       pressure_mass.clear();
-                                       mass_sparsity.reinit(0, 0, 0);
-                                       MemoryUsage::release_free_memory();
-                                     });
+    // With the multigrid, the solver takes the system's blocks over, and
+    // the pressure mass is freed before the multigrid's levels are built;
+    // without, the solver copies the blocks it needs from the system.
+    const auto release = [this]() {
+      matrix.clear();
+      sparsity.reinit(0, 0, 0);
+      pressure_mass.clear();
+      mass_sparsity.reinit(0, 0, 0);
+      MemoryUsage::release_free_memory();
+    };
+    std::unique_ptr<CutSaddlePointSolver<dim>> solver =
+      blocks ? std::make_unique<CutSaddlePointSolver<dim>>(std::move(blocks),
+                                                           pressure_mass,
+                                                           layout,
+                                                           *multigrid,
+                                                           release) :
+               std::make_unique<CutSaddlePointSolver<dim>>(matrix,
+                                                           pressure_mass,
+                                                           layout,
+                                                           multigrid.get(),
+                                                           release);
     MemoryUsage::release_free_memory();
-    const auto statistics         = solver.solve(scaled_solution,
-                                         scaled_rhs,
-                                         s.iterative_tolerance,
-                                         s.iterative_max_iterations,
-                                         guessed);
+    const auto statistics         = solver->solve(scaled_solution,
+                                          scaled_rhs,
+                                          s.iterative_tolerance,
+                                          s.iterative_max_iterations,
+                                          guessed);
     result.initial_residual       = statistics.initial_residual;
     result.iterative              = true;
     result.n_iterations           = statistics.iterations;
@@ -634,7 +665,7 @@ namespace Fidus
     result.stage_seconds.blocks   = statistics.blocks_seconds;
     result.stage_seconds.pressure = statistics.pressure_seconds;
     result.stage_seconds.velocity = statistics.velocity_seconds;
-    solver.system_vmult(residual, scaled_solution);
+    solver->system_vmult(residual, scaled_solution);
     residual.sadd(-1., scaled_rhs);
   }
 
@@ -683,7 +714,7 @@ namespace Fidus
     for (unsigned int i = 0; i < n_fluid; ++i)
       scaled_solution[i] =
         constraints.is_constrained(i) ?
-          scaled_rhs[i] / matrix.diag_element(i) :
+          scaled_rhs[i] / system_diagonal(i) :
           guess.value(layout.support_point[i], layout.component[i]) / scale[i];
     for (unsigned int p = 0; p < particles.size(); ++p)
       {

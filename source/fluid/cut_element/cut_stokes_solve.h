@@ -28,6 +28,7 @@
 #include <fidus/fluid/cut_element/cut_mesh.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
+#include <fidus/fluid/cut_element/cut_system_blocks.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
 #include <map>
 #include <memory>
@@ -444,6 +445,21 @@ namespace Fidus
                const FullMatrix<double>                   &local_pressure,
                const std::vector<types::global_dof_index> &dofs);
 
+    /// Add @p local on the unknowns @p dofs to the system through the
+    /// constraints (into its blocks, or into the one matrix), and what its
+    /// inhomogeneities move to the right-hand side with @p local_rhs.
+    void
+    add_to_system(const FullMatrix<double>                   &local,
+                  const Vector<double>                       &local_rhs,
+                  const std::vector<types::global_dof_index> &dofs);
+
+    /// The system's diagonal entry of row @p i.
+    double
+    system_diagonal(const unsigned int i) const
+    {
+      return blocks ? blocks->diag_element(i) : matrix.diag_element(i);
+    }
+
     /// The rows of the global matrices that adding a full @p cell writes:
     /// its DoFs and those its constrained ones stand for.
     std::vector<types::global_dof_index>
@@ -556,8 +572,12 @@ namespace Fidus
     /// DoF indices of a cell and of its neighbour.
     std::vector<types::global_dof_index> dofs, neighbour_dofs;
 
-    RowPattern           sparsity;
-    SparseMatrix<double> matrix;
+    /// The system: one matrix (the direct solver, the AMG), or its
+    /// blocks (the iterative solver with the multigrid; the pattern is
+    /// then freed once they are made).
+    RowPattern                       sparsity;
+    SparseMatrix<double>             matrix;
+    std::unique_ptr<CutSystemBlocks> blocks;
     /// Between sliding walls, the rows of the matrix without the
     /// constraints that the walls' stress reads (wall_rows; the others
     /// hold their diagonal only, zero), on their own pattern.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deal.II/base/work_stream.h>
+#include <deal.II/lac/affine_constraints.templates.h>
 #include <deal.II/non_matching/fe_immersed_values.h>
 #include <fidus/fluid/cut_element/cut_level_set.h>
 #include <fidus/fluid/cut_element/product_transposed.h>
@@ -305,7 +306,28 @@ namespace Fidus
     // The cells carry no load: the right-hand side comes from the
     // constraints' inhomogeneities (the imposed velocities).
     const Vector<double> zero(dofs.size());
-    constraints.distribute_local_to_global(local, zero, dofs, matrix, rhs);
+    add_to_system(local, zero, dofs);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_to_system(
+    const FullMatrix<double>                   &local,
+    const Vector<double>                       &local_rhs,
+    const std::vector<types::global_dof_index> &dofs)
+  {
+    if (blocks)
+      constraints.distribute_local_to_global(local,
+                                             local_rhs,
+                                             dofs,
+                                             *blocks,
+                                             rhs);
+    else
+      constraints.distribute_local_to_global(local,
+                                             local_rhs,
+                                             dofs,
+                                             matrix,
+                                             rhs);
   }
 
   template <int dim>
@@ -388,7 +410,7 @@ namespace Fidus
     // colour, each entry's sum in the colours' order whatever the threads.
     // (deal.II's GraphColoring took as long as the additions it saved.)
     const std::vector<std::vector<unsigned int>> colours =
-      colour_greedily(full.size(), matrix.m(), [&](const unsigned int k) {
+      colour_greedily(full.size(), n_total, [&](const unsigned int k) {
         return rows_written(full[k]);
       });
     for (const auto &colour : colours)
@@ -446,7 +468,12 @@ namespace Fidus
                                    "is not there"));
             rhs(row(k)) += c.load[k];
             for (unsigned int l = 0; l < m; ++l)
-              matrix.add(row(k), row(l), c.matrix[k][l]);
+              {
+                if (blocks)
+                  blocks->add(row(k), row(l), c.matrix[k][l]);
+                else
+                  matrix.add(row(k), row(l), c.matrix[k][l]);
+              }
           }
       }
   }
@@ -595,11 +622,7 @@ namespace Fidus
         // With the right-hand side: a face next to the box's boundary
         // couples to DoFs with imposed velocity, whose values move to it.
         face_rhs.reinit(cp.face_dofs.size());
-        constraints.distribute_local_to_global(cp.face_matrix,
-                                               face_rhs,
-                                               cp.face_dofs,
-                                               matrix,
-                                               rhs);
+        add_to_system(cp.face_matrix, face_rhs, cp.face_dofs);
       },
       scratch,
       copy);

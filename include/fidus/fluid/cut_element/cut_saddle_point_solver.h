@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_element/cut_system_blocks.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
 #include <fidus/fluid/cut_element/row_pattern.h>
 #include <functional>
@@ -126,6 +127,19 @@ namespace Fidus
                          const std::function<void()> &release   = {});
 
     /**
+     * The same with @p multigrid, for a system assembled directly into its
+     * blocks (@p blocks, CutSystemBlocks, whose kinds are @p layout's),
+     * which the solver takes over: nothing is copied, and the system is
+     * never held as one matrix. @p release, if given, is called before
+     * the multigrid is set up, to free the caller's @p pressure_mass.
+     */
+    CutSaddlePointSolver(std::unique_ptr<CutSystemBlocks> blocks,
+                         const SparseMatrix<double>      &pressure_mass,
+                         const Layout                    &layout,
+                         CutVelocityMultigrid<dim>       &multigrid,
+                         const std::function<void()>     &release = {});
+
+    /**
      * Solve matrix x = b to ||b - matrix x|| <= tolerance ||b||, from
      * x = 0, or with @p from_x from the @p x given (from zero instead if
      * its residual is not below ||b||: a guess worse than none). The
@@ -150,10 +164,23 @@ namespace Fidus
     system_vmult(Vector<double> &dst, const Vector<double> &src) const;
 
   private:
+    /// Each unknown's index within its kind (local), and the lists of
+    /// each kind (velocity, pressure, rigid), from @p layout.
+    void
+    number_unknowns(const Layout &layout);
+
     /// Copies the blocks of the system that the preconditioner needs: K or
-    /// A_uu, B^T with A_Vu, and A_Vu alone without the multigrid.
+    /// A_uu, B^T with A_Vu, and A_Vu alone without the multigrid; the
+    /// pressure block.
     void
     extract_blocks(const Layout &layout);
+
+    /// The set-up after the blocks: the pressure side, @p release, the
+    /// velocity side (the constructors' common part).
+    void
+    setup(const SparseMatrix<double>  &pressure_mass,
+          const Layout                &layout,
+          const std::function<void()> &release);
 
     /// Assembles S = M / eta + C on the pressures, with a unit diagonal
     /// for the constrained ones (which apply_pressure_inverse() sets
@@ -196,19 +223,23 @@ namespace Fidus
     void
     build_gap_laplacian(const Layout &layout);
 
-    /// The system; not read after the constructor with the multigrid.
-    const SparseMatrix<double> &matrix;
+    /// The system; nullptr when it came as blocks, and not read after the
+    /// constructor with the multigrid.
+    const SparseMatrix<double> *matrix;
     /// Global indices of the velocity, pressure and rigid unknowns, and
     /// each unknown's index within its kind.
     std::vector<unsigned int> velocity, pressure, rigid, local;
-    RowPattern velocity_sparsity, coupling_sparsity, rigid_sparsity,
-      divergence_sparsity, pressure_block_sparsity;
+    /// The system's blocks, and the names the solver gives them: A_uu (K
+    /// with the multigrid), B^T (rows: velocities, then rigid unknowns),
+    /// B (columns: velocities, then rigid unknowns; with the multigrid
+    /// only) and the system's pressure block.
+    std::unique_ptr<CutSystemBlocks> blocks;
+    SparseMatrix<double>            &velocity_matrix, &coupling, &divergence,
+      &pressure_block;
+    RowPattern      rigid_sparsity;
     SparsityPattern pressure_sparsity;
-    /// A_uu (K with the multigrid); S; B^T (rows: velocities, then rigid
-    /// unknowns); A_Vu; with the multigrid, B (columns: velocities, then
-    /// rigid unknowns) and the system's pressure block.
-    SparseMatrix<double> velocity_matrix, pressure_schur, coupling,
-      rigid_coupling, divergence, pressure_block;
+    /// S; A_Vu (without the multigrid).
+    SparseMatrix<double>                     pressure_schur, rigid_coupling;
     TrilinosWrappers::SparseMatrix           velocity_trilinos;
     TrilinosWrappers::PreconditionAMG        velocity_amg;
     PreconditionJacobi<SparseMatrix<double>> pressure_jacobi;

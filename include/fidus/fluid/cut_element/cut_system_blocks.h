@@ -1,0 +1,127 @@
+#ifndef fidus_fluid_cut_system_blocks_h
+#define fidus_fluid_cut_system_blocks_h
+
+#include <deal.II/base/types.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_element/row_pattern.h>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * The cut finite element's system as its iterative solver with the
+   * velocity multigrid keeps it (CutSaddlePointSolver): four blocks,
+   *
+   *   K = [A_uu A_uV; A_Vu A_VV]   (rows and columns: the fluid
+   *                                  velocities, then the rigid unknowns)
+   *   B^T                           (rows as K, columns the pressures)
+   *   B                             (rows the pressures, columns as K)
+   *   P                             (the pressure block, -C)
+   *
+   * assembled directly: AffineConstraints::distribute_local_to_global()
+   * writes into an object of this class as into one matrix of the
+   * system's numbering (add(), m(), n()), and each entry goes to its block.
+   * The system as one matrix is never held: copying it into the blocks
+   * held every entry twice, the solve's peak memory, and took a tenth of a
+   * 3D solve.
+   *
+   * Within each kind the unknowns keep the system's order, and the rigid
+   * unknowns are numbered after the fluid's, so each block's row keeps its
+   * columns in ascending order and an added row is walked once.
+   */
+  class CutSystemBlocks
+  {
+  public:
+    using size_type  = types::global_dof_index;
+    using value_type = double;
+
+    /// Virtual: AffineConstraints tries a dynamic_cast of the matrix it
+    /// writes into to SparseMatrix, which needs a polymorphic type.
+    virtual ~CutSystemBlocks() = default;
+
+    /**
+     * The blocks of the system whose pattern is @p system, each unknown
+     * i of the kind @p kind[i] (0: velocity, 1: pressure, 2: rigid, the
+     * rigid ones numbered after all the others), with zero entries. The
+     * caller may free @p system afterwards.
+     */
+    void
+    reinit(const SparsityPattern            &system,
+           const std::vector<unsigned char> &kind);
+
+    /// The system's size (both dimensions).
+    size_type
+    m() const
+    {
+      return kind.size();
+    }
+    size_type
+    n() const
+    {
+      return kind.size();
+    }
+
+    /// The system's entries (@p row, @p columns[k]) += @p values[k]; the
+    /// entries must be in the pattern given to reinit().
+    void
+    add(const size_type  row,
+        const size_type  n_columns,
+        const size_type *columns,
+        const double    *values,
+        const bool       elide_zero_values      = false,
+        const bool       col_indices_are_sorted = false);
+
+    /// The system's entry (@p i, @p j) += @p value.
+    void
+    add(const size_type i, const size_type j, const double value)
+    {
+      add(i, 1, &j, &value);
+    }
+
+    /// The system's diagonal entry of row @p i.
+    double
+    diag_element(const size_type i) const;
+
+    /**
+     * f(j, value) on the entries of the system's row @p i, with j the
+     * system's column; value is the block's entry (assignable).
+     */
+    template <typename F>
+    void
+    for_row(const size_type i, const F &f);
+
+    /// The rows of K (velocities, then rigid unknowns) and of B and P
+    /// (pressures), by their system index.
+    std::vector<unsigned int> k_rows, p_rows;
+    /// Each unknown's kind, and its row within K or within P.
+    std::vector<unsigned char> kind;
+    std::vector<unsigned int>  local;
+    /// The blocks and their patterns.
+    RowPattern           k_pattern, bt_pattern, b_pattern, p_pattern;
+    SparseMatrix<double> k, bt, b, p;
+  };
+
+
+
+  template <typename F>
+  void
+  CutSystemBlocks::for_row(const size_type i, const F &f)
+  {
+    const bool on_k = kind[i] != 1;
+    const auto walk = [&](SparseMatrix<double>            &block,
+                          const std::vector<unsigned int> &columns) {
+      for (auto it = block.begin(local[i]), end = block.end(local[i]);
+           it != end;
+           ++it)
+        f(columns[it->column()], it->value());
+    };
+    walk(on_k ? k : b, k_rows);
+    walk(on_k ? bt : p, p_rows);
+  }
+} // namespace Fidus
+
+#endif
