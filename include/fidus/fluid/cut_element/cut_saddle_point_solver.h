@@ -97,7 +97,8 @@ namespace Fidus
       unsigned int setup_iterations = 0;
       /// Wall seconds: AMG setups and W; the FGMRES iterations.
       double setup_seconds = 0., solve_seconds = 0.;
-      /// Of setup_seconds: copying the blocks; the pressure Schur
+      /// Of setup_seconds: copying the blocks (0 when the system came
+      /// as its blocks); the pressure Schur
       /// complement's preconditioner (with the gap Laplacian's AMG); the
       /// velocity block's multigrid or AMG.
       double blocks_seconds = 0., pressure_seconds = 0., velocity_seconds = 0.;
