@@ -311,9 +311,9 @@ if [ $status -ne 0 ] && [ "$(grep -c '^fidus:' stderr.txt)" -eq 1 ] && [ -n "$un
 
 # The iterative solver's peak follows the matrix's entries, which a dense
 # suspension has 2-3 times more of per unknown than one sphere: 37 spheres
-# at phi = 0.3 (137 000 unknowns, 81 million entries, a 2.0 GB peak) under
-# a 1.5 GB budget pass the first estimate (7 KB per unknown) and stop, with
-# one message, at the second (23 B per entry), after the pattern and
+# at phi = 0.3 (137 000 unknowns, 81 million entries, a 1.8 GB peak) under
+# a 1.5 GB budget pass the first estimate (6 KB per unknown) and stop, with
+# one message, at the second (20 B per entry), after the pattern and
 # before the system is built. (Without the second, such a run was killed
 # by the operating system.)
 cat > cut_dense_memory.prm <<EOF2
@@ -353,7 +353,7 @@ rm -rf "$work/out"
 "$fidus" cut_dense_memory.prm > /dev/null 2> stderr.txt
 status=$?
 if [ $status -ne 0 ] && [ "$(grep -c '^fidus:' stderr.txt)" -eq 1 ] \
-   && grep -q "the cut mesh has [0-9]* unknowns and [0-9]* matrix entries; its iterative solve needs about .* (23 B per entry), but this rank has .* left ('Fluid/Linear solver/Memory per rank' = 1.5 GB)" stderr.txt; then
+   && grep -q "the cut mesh has [0-9]* unknowns and [0-9]* matrix entries; its iterative solve needs about .* (20 B per entry), but this rank has .* left ('Fluid/Linear solver/Memory per rank' = 1.5 GB)" stderr.txt; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: dense 3D cut element over its memory budget (status $status)"; cat stderr.txt; fi
 
 # A setting that another one switches off is said, not silent: the

@@ -380,5 +380,17 @@ main(int argc, char **argv)
                  separate,
                  separate ? 20. : 15.,
                  2.);
+  // The separated finest level is read from the block through the
+  // components in single precision, but copied in double: the double
+  // V-cycle's path, under the same bounds.
+  check_levels("symmetric gradient, walls, hole held, components separated, "
+               "double V-cycle",
+               false,
+               true,
+               false,
+               true,
+               true,
+               20.,
+               2.);
   return exit_code();
 }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
+#include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/cut_cell_block_jacobi.h>
 #include <limits>
 
@@ -41,8 +42,12 @@ namespace Fidus
   void
   CutCellBlockJacobi::initialize(
     const SparseMatrix<double>                   &a,
-    const std::vector<std::vector<unsigned int>> &blocks)
+    const std::vector<std::vector<unsigned int>> &blocks,
+    const std::vector<unsigned char>             &component)
   {
+    const auto keep = [&component](const unsigned int i, const unsigned int j) {
+      return couples_within_component(component, i, j);
+    };
     const unsigned int n = a.m();
     block_start.assign(1, 0);
     rows.clear();
@@ -68,7 +73,7 @@ namespace Fidus
         block_matrix.reinit(m, m);
         for (unsigned int p = 0; p < m; ++p)
           for (auto it = a.begin(block[p]); it != a.end(block[p]); ++it)
-            if (position[it->column()] >= 0)
+            if (position[it->column()] >= 0 && keep(block[p], it->column()))
               block_matrix(p, position[it->column()]) = it->value();
         for (unsigned int p = 0; p < m; ++p)
           position[block[p]] = -1;

@@ -260,16 +260,16 @@ namespace Fidus
     // copies, the solver and its vectors), measured on one rank
     // (doc/theory/cut_element.md, "Memory"). The iterative solver's peak
     // follows the pattern's entries: the blocks it assembles into, the
-    // multigrid's levels and FGMRES's basis, 23-30 bytes per entry from a
+    // multigrid's levels and FGMRES's basis, 20-28 bytes per entry from a
     // dense suspension (600-740 entries per unknown) to one sphere (240;
-    // per unknown 7 to 19 KB). Before the pattern, a bound per unknown
-    // below all of them. The direct solver's factor fills in: as LU 8-11 KB per
-    // unknown in 2D, 56-68 KB in 3D; as LDL^T 4.1 KB in 2D, 32 KB in 3D.
-    // The lower ends, so that a solve is stopped only when it would
+    // per unknown 6.7 to 15 KB and more). Before the pattern, a bound per
+    // unknown below all of them. The direct solver's factor fills in: as LU
+    // 8-11 KB per unknown in 2D, 56-68 KB in 3D; as LDL^T 4.1 KB in 2D, 32 KB
+    // in 3D. The lower ends, so that a solve is stopped only when it would
     // clearly not fit.
     const bool   ldlt     = !iterate && system_is_symmetric();
-    const double per_unit = with_pattern ? 23. :
-                            iterate      ? 7e3 :
+    const double per_unit = with_pattern ? 20. :
+                            iterate      ? 6e3 :
                             dim == 2     ? (ldlt ? 4e3 : 7e3) :
                                            (ldlt ? 28e3 : 50e3);
     const double units    = with_pattern ? double(result.n_entries) : n_total;

@@ -8,6 +8,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/multigrid/mg_transfer_global_coarsening.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
 #include <fidus/fluid/cut_element/galerkin_product.h>
 #include <stdexcept>
@@ -170,11 +171,18 @@ namespace Fidus
     const unsigned int               n_rigid)
   {
     finest = &matrix;
+    row_component.clear();
     if (settings.separate_components)
       {
         separate_components(matrix, velocity_unknowns);
-        finest = &separated;
+        if (!settings.single_precision)
+          finest = &separated;
       }
+    // The finest level read without its couplings between components
+    // (none once #separated holds it).
+    const std::vector<unsigned char> all_entries;
+    const auto                      &finest_components =
+      finest == &matrix ? row_component : all_entries;
     prolongation_pattern.clear();
     prolongation.clear();
     coarse_pattern.clear();
@@ -265,7 +273,8 @@ namespace Fidus
         galerkin_product(level_matrix(l),
                          *prolongation.back(),
                          *coarse_pattern.back(),
-                         *coarse.back());
+                         *coarse.back(),
+                         l == 0 ? finest_components : all_entries);
         for (unsigned int i = 0; i < coarse.back()->m(); ++i)
           if (coarse.back()->diag_element(i) == 0.)
             coarse.back()->diag_element(i) = 1.;
@@ -286,7 +295,8 @@ namespace Fidus
                             l == 0 ? system_constraints : constraints[l],
                             l == 0,
                             local) :
-            std::vector<std::vector<unsigned int>>());
+            std::vector<std::vector<unsigned int>>(),
+          l == 0 ? finest_components : all_entries);
         block_jacobi.push_back(data.preconditioner);
         if (!settings.single_precision)
           {
@@ -331,40 +341,51 @@ namespace Fidus
         for (unsigned int i = 0; i < indices.size(); ++i)
           dof_component[indices[i]] = fe.system_to_component_index(i).first;
       }
-    const unsigned int         n_u = velocity_unknowns.size();
-    std::vector<unsigned char> component(matrix.m(), 255);
+    const unsigned int n_u = velocity_unknowns.size();
+    row_component.assign(matrix.m(), 255);
     for (unsigned int k = 0; k < n_u; ++k)
-      component[k] = dof_component[velocity_unknowns[k]];
-    const auto keep = [&](const unsigned int i, const unsigned int j) {
-      return i >= n_u || j >= n_u || component[i] == component[j];
-    };
+      row_component[k] = dof_component[velocity_unknowns[k]];
     separated_pattern
       .fill(matrix.m(), matrix.n(), [&](const unsigned int i, const auto &f) {
         for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-          if (keep(i, it->column()))
+          if (couples_within_component(row_component, i, it->column()))
             f(it->column());
       });
-    separated.reinit(separated_pattern);
+    if (!settings.single_precision)
+      {
+        separated.reinit(separated_pattern);
+        copy_separated(matrix, separated);
+      }
+  }
+
+
+
+  template <int dim>
+  template <typename Number>
+  void
+  CutVelocityMultigrid<dim>::copy_separated(const SparseMatrix<double> &matrix,
+                                            SparseMatrix<Number> &out) const
+  {
     // Both rows hold their diagonal first and then ascending columns, and
     // the kept entries are a subsequence of the block's: copied in one
     // walk.
-    on_row_ranges(matrix.m(),
-                  4,
-                  [&](const unsigned int first, const unsigned int last) {
-                    for (unsigned int i = first; i < last; ++i)
-                      {
-                        auto out = separated.begin(i);
-                        for (auto it = matrix.begin(i); it != matrix.end(i);
-                             ++it)
-                          if (keep(i, it->column()))
-                            {
-                              AssertThrow(out->column() == it->column(),
-                                          ExcInternalError());
-                              out->value() = it->value();
-                              ++out;
-                            }
-                      }
-                  });
+    on_row_ranges(
+      matrix.m(),
+      4,
+      [&](const unsigned int first, const unsigned int last) {
+        for (unsigned int i = first; i < last; ++i)
+          {
+            auto out_entry = out.begin(i);
+            for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+              if (couples_within_component(row_component, i, it->column()))
+                {
+                  AssertThrow(out_entry->column() == it->column(),
+                              ExcInternalError());
+                  out_entry->value() = it->value();
+                  ++out_entry;
+                }
+          }
+      });
   }
 
 
@@ -387,9 +408,19 @@ namespace Fidus
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
       {
         const SparseMatrix<double> &a = level_matrix(l);
-        level_float.push_back(
-          std::make_unique<SparseMatrix<float>>(a.get_sparsity_pattern()));
-        level_float.back()->copy_from(a);
+        if (l == 0 && !row_component.empty())
+          {
+            // The finest level separated straight from the caller's block.
+            level_float.push_back(
+              std::make_unique<SparseMatrix<float>>(separated_pattern));
+            copy_separated(a, *level_float.back());
+          }
+        else
+          {
+            level_float.push_back(
+              std::make_unique<SparseMatrix<float>>(a.get_sparsity_pattern()));
+            level_float.back()->copy_from(a);
+          }
         prolongation_float.push_back(
           std::make_unique<SparseMatrix<float>>(*prolongation_pattern[l]));
         prolongation_float.back()->copy_from(*prolongation[l]);

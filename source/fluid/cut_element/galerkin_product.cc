@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstddef>
+#include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/galerkin_product.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <limits>
@@ -141,20 +142,27 @@ namespace Fidus
 
 
   void
-  galerkin_product(const SparseMatrix<double> &a,
-                   const SparseMatrix<double> &p,
-                   RowPattern                 &pattern,
-                   SparseMatrix<double>       &c)
+  galerkin_product(const SparseMatrix<double>       &a,
+                   const SparseMatrix<double>       &p,
+                   RowPattern                       &pattern,
+                   SparseMatrix<double>             &c,
+                   const std::vector<unsigned char> &component)
   {
+    Assert(component.empty() || component.size() == a.m(),
+           ExcDimensionMismatch(component.size(), a.m()));
+    const auto keep = [&component](const unsigned int i, const unsigned int j) {
+      return couples_within_component(component, i, j);
+    };
     // The intermediate products are released before C is allocated.
     const Rows product = [&]() {
       const Rows p_rows = rows_of(p);
       // A P, reading A in place (it is the largest matrix of the hierarchy).
       const Rows ap = multiply(
         a.m(),
-        [&a](const unsigned int i, const auto &f) {
+        [&a, &keep](const unsigned int i, const auto &f) {
           for (auto e = a.begin(i); e != a.end(i); ++e)
-            f(e->column(), e->value());
+            if (keep(i, e->column()))
+              f(e->column(), e->value());
         },
         p_rows);
       const Rows pt = transpose(p_rows);

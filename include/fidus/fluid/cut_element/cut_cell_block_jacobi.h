@@ -43,11 +43,14 @@ namespace Fidus
      * Set up for the symmetric @p a with the blocks @p blocks, each a
      * list of distinct row indices of @p a. A block whose matrix is not
      * positive definite takes the inverse of its spectral absolute value
-     * (n_indefinite_blocks()).
+     * (n_indefinite_blocks()). With @p component (one entry per row),
+     * @p a is read without its entries (i, j) whose rows hold different
+     * components (neither 255), as galerkin_product() reads it.
      */
     void
     initialize(const SparseMatrix<double>                   &a,
-               const std::vector<std::vector<unsigned int>> &blocks);
+               const std::vector<std::vector<unsigned int>> &blocks,
+               const std::vector<unsigned char>             &component = {});
 
     /// dst = P^-1 src, in double or float (the V-cycle in single precision).
     template <typename Number>

@@ -181,15 +181,30 @@ namespace Fidus
     const Settings                             settings;
     std::vector<std::pair<Point<dim>, double>> surfaces;
 
+    /// The finest level's operator in double: the caller's block, or
+    /// #separated.
     const SparseMatrix<double> *finest = nullptr;
-    /// With Settings::separate_components: the finest level's operator,
-    /// the caller's block without its couplings between components.
-    RowPattern           separated_pattern;
-    SparseMatrix<double> separated;
-    /// Make #separated from @p matrix (rows as in initialize()).
+    /// With Settings::separate_components: each row's velocity component
+    /// (255: a rigid row), and the pattern of the caller's block without
+    /// its couplings between components. In single precision the finest
+    /// level is read from the caller's block through the components (the
+    /// Galerkin product, the cut-cell blocks) and copied to float on this
+    /// pattern, never held separated in double; in double it is
+    /// #separated.
+    std::vector<unsigned char> row_component;
+    RowPattern                 separated_pattern;
+    SparseMatrix<double>       separated;
+    /// Make #row_component and #separated_pattern from @p matrix (rows as
+    /// in initialize()), and #separated in double.
     void
     separate_components(const SparseMatrix<double>      &matrix,
                         const std::vector<unsigned int> &velocity_unknowns);
+    /// @p out (on #separated_pattern) = @p matrix without its couplings
+    /// between components.
+    template <typename Number>
+    void
+    copy_separated(const SparseMatrix<double> &matrix,
+                   SparseMatrix<Number>       &out) const;
     /// prolongation[l]: level l + 1 to level l.
     std::vector<std::unique_ptr<SparsityPattern>>      prolongation_pattern;
     std::vector<std::unique_ptr<SparseMatrix<double>>> prolongation;

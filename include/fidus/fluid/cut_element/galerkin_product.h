@@ -3,6 +3,7 @@
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <fidus/fluid/cut_element/row_pattern.h>
+#include <vector>
 
 namespace Fidus
 {
@@ -22,12 +23,19 @@ namespace Fidus
    * (doc/history/cut_element_solvers.md, "The multigrid's set-up"). The rows
    * are split among the threads (MultithreadInfo::n_threads()); the result does
    * not depend on their number.
+   *
+   * With @p component (one entry per row of @p a), A is read without its
+   * entries (i, j) whose rows hold different components (component[i] !=
+   * component[j], neither 255): the product of the block without its
+   * couplings between components, without a copy of it
+   * (CutVelocityMultigrid::Settings::separate_components).
    */
   void
-  galerkin_product(const SparseMatrix<double> &a,
-                   const SparseMatrix<double> &p,
-                   RowPattern                 &pattern,
-                   SparseMatrix<double>       &c);
+  galerkin_product(const SparseMatrix<double>       &a,
+                   const SparseMatrix<double>       &p,
+                   RowPattern                       &pattern,
+                   SparseMatrix<double>             &c,
+                   const std::vector<unsigned char> &component = {});
 } // namespace Fidus
 
 #endif
