@@ -45,9 +45,6 @@ namespace Fidus
     const std::vector<std::vector<unsigned int>> &blocks,
     const std::vector<unsigned char>             &component)
   {
-    const auto keep = [&component](const unsigned int i, const unsigned int j) {
-      return couples_within_component(component, i, j);
-    };
     const unsigned int n = a.m();
     block_start.assign(1, 0);
     rows.clear();
@@ -73,7 +70,8 @@ namespace Fidus
         block_matrix.reinit(m, m);
         for (unsigned int p = 0; p < m; ++p)
           for (auto it = a.begin(block[p]); it != a.end(block[p]); ++it)
-            if (position[it->column()] >= 0 && keep(block[p], it->column()))
+            if (position[it->column()] >= 0 &&
+                couples_within_component(component, block[p], it->column()))
               block_matrix(p, position[it->column()]) = it->value();
         for (unsigned int p = 0; p < m; ++p)
           position[block[p]] = -1;

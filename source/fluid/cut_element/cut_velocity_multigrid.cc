@@ -280,6 +280,36 @@ namespace Fidus
             coarse.back()->diag_element(i) = 1.;
       }
 
+    setup_smoothers(dofs, constraints, local, finest_components);
+    coarsest.initialize(level_matrix(n_levels - 1));
+    if (settings.single_precision)
+      {
+        setup_single_precision();
+        return;
+      }
+    residual.resize(n_levels);
+    level_rhs.resize(n_levels);
+    level_solution.resize(n_levels);
+    for (unsigned int l = 0; l < n_levels; ++l)
+      {
+        residual[l].reinit(level_matrix(l).m());
+        level_rhs[l].reinit(level_matrix(l).m());
+        level_solution[l].reinit(level_matrix(l).m());
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::setup_smoothers(
+    const std::vector<std::unique_ptr<DoFHandler<dim>>> &dofs,
+    const std::vector<AffineConstraints<double>>        &constraints,
+    const std::vector<int>                              &local,
+    const std::vector<unsigned char>                    &finest_components)
+  {
+    const unsigned int               n_levels = coarse.size() + 1;
+    const std::vector<unsigned char> all_entries;
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
       {
         const SparseMatrix<double>       &a = level_matrix(l);
@@ -303,21 +333,6 @@ namespace Fidus
             smoother.push_back(std::make_unique<Smoother>());
             smoother.back()->initialize(a, data);
           }
-      }
-    coarsest.initialize(level_matrix(n_levels - 1));
-    if (settings.single_precision)
-      {
-        setup_single_precision();
-        return;
-      }
-    residual.resize(n_levels);
-    level_rhs.resize(n_levels);
-    level_solution.resize(n_levels);
-    for (unsigned int l = 0; l < n_levels; ++l)
-      {
-        residual[l].reinit(level_matrix(l).m());
-        level_rhs[l].reinit(level_matrix(l).m());
-        level_solution[l].reinit(level_matrix(l).m());
       }
   }
 

@@ -150,18 +150,15 @@ namespace Fidus
   {
     Assert(component.empty() || component.size() == a.m(),
            ExcDimensionMismatch(component.size(), a.m()));
-    const auto keep = [&component](const unsigned int i, const unsigned int j) {
-      return couples_within_component(component, i, j);
-    };
     // The intermediate products are released before C is allocated.
     const Rows product = [&]() {
       const Rows p_rows = rows_of(p);
       // A P, reading A in place (it is the largest matrix of the hierarchy).
       const Rows ap = multiply(
         a.m(),
-        [&a, &keep](const unsigned int i, const auto &f) {
+        [&a, &component](const unsigned int i, const auto &f) {
           for (auto e = a.begin(i); e != a.end(i); ++e)
-            if (keep(i, e->column()))
+            if (couples_within_component(component, i, e->column()))
               f(e->column(), e->value());
         },
         p_rows);

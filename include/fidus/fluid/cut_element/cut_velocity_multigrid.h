@@ -153,6 +153,18 @@ namespace Fidus
                     const bool                       finest,
                     const std::vector<int>          &local) const;
 
+    /// The smoothers' cut-cell block preconditioners of every level above
+    /// the coarsest (and the double smoothers without single precision),
+    /// once the levels are built; @p dofs and @p constraints are those of
+    /// the levels below the finest, @p local maps a system DoF to its row
+    /// on the finest, read through @p finest_components
+    /// (couples_within_component()).
+    void
+    setup_smoothers(const std::vector<std::unique_ptr<DoFHandler<dim>>> &dofs,
+                    const std::vector<AffineConstraints<double>> &constraints,
+                    const std::vector<int>                       &local,
+                    const std::vector<unsigned char> &finest_components);
+
     /// x = V-cycle on level @p level for the right-hand side @p b.
     void
     v_cycle(const unsigned int    level,
