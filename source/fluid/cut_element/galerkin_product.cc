@@ -3,27 +3,18 @@
 #include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/galerkin_product.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
-#include <limits>
+#include <fidus/fluid/cut_element/sparse_rows.h>
 #include <vector>
 
 namespace Fidus
 {
   namespace
   {
-    /// A sparse matrix in compressed rows, columns unsorted within a row.
-    struct Rows
-    {
-      unsigned int              n_rows = 0, n_cols = 0;
-      std::vector<std::size_t>  start{0};
-      std::vector<unsigned int> column;
-      std::vector<double>       value;
-    };
-
     /// @p m's entries, row by row.
-    Rows
+    SparseRows
     rows_of(const SparseMatrix<double> &m)
     {
-      Rows r;
+      SparseRows r;
       r.n_rows = m.m();
       r.n_cols = m.n();
       r.start.reserve(r.n_rows + 1);
@@ -40,103 +31,6 @@ namespace Fidus
         }
       return r;
     }
-
-    /// The transpose of @p m (a counting sort by column).
-    Rows
-    transpose(const Rows &m)
-    {
-      Rows t;
-      t.n_rows = m.n_cols;
-      t.n_cols = m.n_rows;
-      t.start.assign(t.n_rows + 1, 0);
-      for (const unsigned int j : m.column)
-        ++t.start[j + 1];
-      for (unsigned int j = 0; j < t.n_rows; ++j)
-        t.start[j + 1] += t.start[j];
-      t.column.resize(m.column.size());
-      t.value.resize(m.value.size());
-      std::vector<std::size_t> next(t.start.begin(), t.start.end() - 1);
-      for (unsigned int i = 0; i < m.n_rows; ++i)
-        for (std::size_t k = m.start[i]; k < m.start[i + 1]; ++k)
-          {
-            const std::size_t to = next[m.column[k]]++;
-            t.column[to]         = i;
-            t.value[to]          = m.value[k];
-          }
-      return t;
-    }
-
-    /**
-     * X Y, row by row: row i of the product accumulates, over the entries
-     * x_ij of row i of X, x_ij times row j of Y. @p x_row(i, f) calls
-     * f(j, x_ij) for those entries. The rows are split among the threads;
-     * each row is summed in the same order on any number of them.
-     */
-    template <typename XRow>
-    Rows
-    multiply(const unsigned int n_rows, const XRow &x_row, const Rows &y)
-    {
-      constexpr unsigned int none = std::numeric_limits<unsigned int>::max();
-      Rows                   r;
-      r.n_rows = n_rows;
-      r.n_cols = y.n_cols;
-      // A first pass counts each row's columns, so that the product is
-      // allocated once at its size (a growing array would double it).
-      r.start.assign(n_rows + 1, 0);
-      on_row_ranges(n_rows,
-                    1,
-                    [&](const unsigned int first, const unsigned int last) {
-                      std::vector<unsigned int> last_row(y.n_cols, none);
-                      for (unsigned int i = first; i < last; ++i)
-                        x_row(i, [&](const unsigned int j, const double) {
-                          for (std::size_t k = y.start[j]; k < y.start[j + 1];
-                               ++k)
-                            if (last_row[y.column[k]] != i)
-                              {
-                                last_row[y.column[k]] = i;
-                                ++r.start[i + 1];
-                              }
-                        });
-                    });
-      for (unsigned int i = 0; i < n_rows; ++i)
-        r.start[i + 1] += r.start[i];
-      r.column.resize(r.start[n_rows]);
-      r.value.resize(r.start[n_rows]);
-      on_row_ranges(
-        n_rows,
-        1,
-        [&](const unsigned int first, const unsigned int last) {
-          std::vector<double>       sum(y.n_cols, 0.);
-          std::vector<unsigned int> last_row(y.n_cols, none);
-          std::vector<unsigned int> touched;
-          for (unsigned int i = first; i < last; ++i)
-            {
-              touched.clear();
-              x_row(i, [&](const unsigned int j, const double x_ij) {
-                for (std::size_t k = y.start[j]; k < y.start[j + 1]; ++k)
-                  {
-                    const unsigned int col = y.column[k];
-                    if (last_row[col] != i)
-                      {
-                        last_row[col] = i;
-                        sum[col]      = 0.;
-                        touched.push_back(col);
-                      }
-                    sum[col] += x_ij * y.value[k];
-                  }
-              });
-              std::size_t to = r.start[i];
-              for (const unsigned int col : touched)
-                {
-                  r.column[to] = col;
-                  r.value[to]  = sum[col];
-                  ++to;
-                }
-            }
-        });
-      return r;
-    }
-
   } // namespace
 
 
@@ -151,10 +45,10 @@ namespace Fidus
     Assert(component.empty() || component.size() == a.m(),
            ExcDimensionMismatch(component.size(), a.m()));
     // The intermediate products are released before C is allocated.
-    const Rows product = [&]() {
-      const Rows p_rows = rows_of(p);
+    const SparseRows product = [&]() {
+      const SparseRows p_rows = rows_of(p);
       // A P, reading A in place (it is the largest matrix of the hierarchy).
-      const Rows ap = multiply(
+      const SparseRows ap = multiply(
         a.m(),
         [&a, &component](const unsigned int i, const auto &f) {
           for (auto e = a.begin(i); e != a.end(i); ++e)
@@ -162,7 +56,7 @@ namespace Fidus
               f(e->column(), e->value());
         },
         p_rows);
-      const Rows pt = transpose(p_rows);
+      const SparseRows pt = transpose(p_rows);
       return multiply(
         pt.n_rows,
         [&pt](const unsigned int i, const auto &f) {

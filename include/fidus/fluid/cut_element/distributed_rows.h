@@ -1,0 +1,191 @@
+#ifndef fidus_fluid_cut_element_distributed_rows_h
+#define fidus_fluid_cut_element_distributed_rows_h
+
+#include <cstddef>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/partitioner.h>
+#include <deal.II/lac/la_parallel_vector.h>
+#include <memory>
+#include <vector>
+
+namespace Fidus
+{
+  using namespace dealii;
+
+  /**
+   * A sparse matrix whose rows are split among the MPI ranks of a
+   * communicator in contiguous ranges, in float or double: the storage of
+   * the cut element's iterative solve on more than one rank
+   * (doc/developer/architecture.md, "The cut element over ranks").
+   *
+   * Each rank holds its own rows, compressed, with local column numbers:
+   * first the columns it owns in the column space, in order, then the
+   * others ("ghost" columns) in ascending global order, as deal.II's
+   * Utilities::MPI::Partitioner numbers them. A product imports the ghost
+   * columns' values from their owners into a buffer of the matrix's own,
+   * so the vectors it takes (LinearAlgebra::distributed::Vector over the
+   * row or column space) need no ghost entries, and one vector serves
+   * matrices with different ghost columns. When no rank has a ghost
+   * column (one rank, or blocks that do not couple the ranks) nothing is
+   * communicated.
+   *
+   * A square matrix (the row and the column space the same, split alike)
+   * keeps each row's diagonal first, as deal.II's SparseMatrix does, so
+   * that its diagonal is read in one step.
+   */
+  template <typename Number>
+  class DistributedRows
+  {
+  public:
+    using VectorType = LinearAlgebra::distributed::Vector<Number>;
+
+    /**
+     * Become the matrix whose rows owned here are @p owned_rows (a
+     * contiguous range; the ranks' ranges tile the row space in the order
+     * of the ranks), with columns in a space of which this rank owns
+     * @p owned_columns (likewise). Local row k (global index first + k)
+     * has the global columns @p columns[start[k]] to
+     * @p columns[start[k + 1] - 1], each at most once, in any order, with
+     * @p values. A square matrix gets every diagonal entry (zero where
+     * absent). Collective on @p comm.
+     */
+    void
+    reinit(const IndexSet                             &owned_rows,
+           const IndexSet                             &owned_columns,
+           const std::vector<std::size_t>             &start,
+           const std::vector<types::global_dof_index> &columns,
+           const std::vector<double>                  &values,
+           const MPI_Comm                              comm);
+
+    /// The same structure as @p other, its values converted to Number.
+    template <typename OtherNumber>
+    void
+    copy_from(const DistributedRows<OtherNumber> &other);
+
+    /// Global numbers of rows and columns.
+    types::global_dof_index
+    m() const
+    {
+      return owned_rows.size();
+    }
+    types::global_dof_index
+    n() const
+    {
+      return partitioner ? partitioner->size() : 0;
+    }
+
+    /// The rows owned here, and their number.
+    const IndexSet &
+    locally_owned_rows() const
+    {
+      return owned_rows;
+    }
+    unsigned int
+    local_rows() const
+    {
+      return row_start.size() - 1;
+    }
+
+    /// Global index of local row 0 (of the range owned here).
+    types::global_dof_index
+    first_row() const
+    {
+      return first;
+    }
+
+    /// The column space: the columns owned here and the ghost columns.
+    const Utilities::MPI::Partitioner &
+    column_partitioner() const
+    {
+      return *partitioner;
+    }
+
+    MPI_Comm
+    get_mpi_communicator() const
+    {
+      return communicator;
+    }
+
+    /// f(local column, value) for each entry of local row @p k, in storage
+    /// order (the diagonal first in a square matrix).
+    template <typename F>
+    void
+    for_row(const unsigned int k, const F &f) const
+    {
+      for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
+        f(column[e], value[e]);
+    }
+
+    /// The diagonal entry of local row @p k of a square matrix.
+    Number &
+    diag_element(const unsigned int k)
+    {
+      return value[row_start[k]];
+    }
+    Number
+    diag_element(const unsigned int k) const
+    {
+      return value[row_start[k]];
+    }
+
+    /// Entries stored on this rank.
+    std::size_t
+    n_local_entries() const
+    {
+      return value.size();
+    }
+
+    /// dst = A src (dst over the row space, src over the column space).
+    void
+    vmult(VectorType &dst, const VectorType &src) const;
+
+    /// dst += A src.
+    void
+    vmult_add(VectorType &dst, const VectorType &src) const;
+
+    /// dst = A^T src (dst over the column space, src over the row space).
+    void
+    Tvmult(VectorType &dst, const VectorType &src) const;
+
+    /// dst += A^T src.
+    void
+    Tvmult_add(VectorType &dst, const VectorType &src) const;
+
+    /// Bytes held on this rank.
+    std::size_t
+    memory_consumption() const;
+
+  private:
+    /// The values src imports (owned ones first, then the ghost columns);
+    /// @p src's own array if nothing is imported.
+    const Number *
+    imported(const VectorType &src) const;
+
+    template <typename>
+    friend class DistributedRows;
+
+    MPI_Comm                                           communicator;
+    IndexSet                                           owned_rows;
+    types::global_dof_index                            first  = 0;
+    bool                                               square = false;
+    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+    /// Whether some rank has ghost columns (then every product imports).
+    bool                      import = false;
+    std::vector<std::size_t>  row_start{0};
+    std::vector<unsigned int> column;
+    std::vector<Number>       value;
+    /// The import buffer, over the column partitioner.
+    mutable VectorType ghosted;
+  };
+
+  /**
+   * The contiguous range of @p n_local indices this rank owns when the
+   * ranks of @p comm own consecutive ranges in their order: an IndexSet
+   * of the whole space's size. Collective.
+   */
+  IndexSet
+  contiguous_range(const unsigned int n_local, const MPI_Comm comm);
+} // namespace Fidus
+
+#endif

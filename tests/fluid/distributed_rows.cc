@@ -1,0 +1,243 @@
+// DistributedRows and distributed_galerkin_product (the cut element's
+// matrices over MPI ranks) against the serial SparseMatrix products and
+// galerkin_product() on the same random matrices, held whole on every rank.
+// The rows are split unevenly (one rank owns no coarse row on 3 ranks), and
+// the matrices couple every pair of ranks. Checked on 1, 2 and 3 ranks:
+// - A x, A^T x, P x, P^T x (rectangular P) to 1e-14 of the largest entry
+//   of the serial result, and A x in float (copied from double) to 1e-6;
+// - P^T A P: every entry to 1e-14 of the largest, the same number of
+//   entries in total as the serial pattern (every diagonal included), for a
+//   symmetric and an unsymmetric A, and with A read without the couplings
+//   between components (component = i mod 3, some rows rigid).
+
+#include "../fidus_test.h"
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_element/distributed_galerkin_product.h>
+#include <fidus/fluid/cut_element/galerkin_product.h>
+#include <map>
+#include <random>
+
+using namespace dealii;
+using namespace FidusTest;
+using Fidus::DistributedRows;
+
+namespace
+{
+  /// A random n × m sparse matrix with about @p per_row entries per row
+  /// (symmetric if asked), the same on every rank.
+  void
+  random_matrix(const unsigned int    n,
+                const unsigned int    m,
+                const unsigned int    per_row,
+                const bool            symmetric,
+                std::mt19937         &random,
+                SparsityPattern      &pattern,
+                SparseMatrix<double> &matrix)
+  {
+    std::uniform_int_distribution<unsigned int> column(0, m - 1);
+    std::uniform_real_distribution<double>      value(-1., 1.);
+    std::vector<std::map<unsigned int, double>> rows(n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int k = 0; k < per_row; ++k)
+        {
+          const unsigned int j = column(random);
+          const double       v = value(random);
+          rows[i][j] += v;
+          if (symmetric && i != j)
+            rows[j][i] += v;
+        }
+    DynamicSparsityPattern dsp(n, m);
+    for (unsigned int i = 0; i < n; ++i)
+      for (const auto &e : rows[i])
+        dsp.add(i, e.first);
+    pattern.copy_from(dsp);
+    matrix.reinit(pattern);
+    for (unsigned int i = 0; i < n; ++i)
+      for (const auto &e : rows[i])
+        matrix.set(i, e.first, e.second);
+  }
+
+  /// This rank's share of @p n indices: rank r of R gets a share growing
+  /// with r (the last rank none when @p last_empty).
+  IndexSet
+  uneven_range(const unsigned int n, const bool last_empty)
+  {
+    const unsigned int ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    const unsigned int used  = last_empty && ranks > 1 ? ranks - 1 : ranks;
+    unsigned int       weight = 0, before = 0;
+    for (unsigned int r = 0; r < used; ++r)
+      {
+        weight += r + 1;
+        if (r < rank)
+          before += r + 1;
+      }
+    const unsigned int first = std::size_t(n) * before / weight;
+    const unsigned int last =
+      rank < used ? std::size_t(n) * (before + rank + 1) / weight : n;
+    return Fidus::contiguous_range(rank < used ? last - first : 0,
+                                   MPI_COMM_WORLD);
+  }
+
+  /// The owned rows of @p m as a DistributedRows.
+  void
+  distribute(const SparseMatrix<double> &m,
+             const IndexSet             &rows,
+             const IndexSet             &columns,
+             DistributedRows<double>    &out)
+  {
+    std::vector<std::size_t>             start{0};
+    std::vector<types::global_dof_index> cols;
+    std::vector<double>                  values;
+    for (const auto i : rows)
+      {
+        for (auto e = m.begin(i); e != m.end(i); ++e)
+          {
+            cols.push_back(e->column());
+            values.push_back(e->value());
+          }
+        start.push_back(cols.size());
+      }
+    out.reinit(rows, columns, start, cols, values, MPI_COMM_WORLD);
+  }
+
+  template <typename Number>
+  LinearAlgebra::distributed::Vector<Number>
+  distributed(const Vector<double> &x, const IndexSet &owned)
+  {
+    LinearAlgebra::distributed::Vector<Number> v(owned, MPI_COMM_WORLD);
+    for (const auto i : owned)
+      v[i] = x[i];
+    return v;
+  }
+
+  /// max over the owned entries of |y - expected| / max |expected|, over
+  /// all ranks.
+  template <typename Number>
+  double
+  error(const LinearAlgebra::distributed::Vector<Number> &y,
+        const Vector<double>                             &expected)
+  {
+    double e = 0.;
+    for (const auto i : y.locally_owned_elements())
+      e = std::max(e, std::abs(double(y[i]) - expected[i]));
+    return Utilities::MPI::max(e, MPI_COMM_WORLD) / expected.linfty_norm();
+  }
+
+  void
+  check(const std::string &name, const bool symmetric, std::mt19937 &random)
+  {
+    const unsigned int   n = 300, m = 70;
+    SparsityPattern      a_pattern, p_pattern;
+    SparseMatrix<double> a, p;
+    random_matrix(n, n, 12, symmetric, random, a_pattern, a);
+    random_matrix(n, m, 4, false, random, p_pattern, p);
+    const IndexSet          fine   = uneven_range(n, false);
+    const IndexSet          coarse = uneven_range(m, true);
+    DistributedRows<double> a_rows, p_rows;
+    distribute(a, fine, fine, a_rows);
+    distribute(p, fine, coarse, p_rows);
+
+    Vector<double>                         x(n), xc(m), y(n), yc(m);
+    std::uniform_real_distribution<double> value(-1., 1.);
+    for (auto &v : x)
+      v = value(random);
+    for (auto &v : xc)
+      v = value(random);
+    LinearAlgebra::distributed::Vector<double> dy(fine, MPI_COMM_WORLD),
+      dyc(coarse, MPI_COMM_WORLD);
+    a.vmult(y, x);
+    a_rows.vmult(dy, distributed<double>(x, fine));
+    check_range(name + ": A x", error(dy, y), 0., 1e-14);
+    a.Tvmult(y, x);
+    a_rows.Tvmult(dy, distributed<double>(x, fine));
+    check_range(name + ": A^T x", error(dy, y), 0., 1e-14);
+    p.vmult(y, xc);
+    p_rows.vmult(dy, distributed<double>(xc, coarse));
+    check_range(name + ": P x", error(dy, y), 0., 1e-14);
+    p.Tvmult(yc, x);
+    p_rows.Tvmult(dyc, distributed<double>(x, fine));
+    check_range(name + ": P^T x", error(dyc, yc), 0., 1e-14);
+    DistributedRows<float> a_float;
+    a_float.copy_from(a_rows);
+    LinearAlgebra::distributed::Vector<float> fy(fine, MPI_COMM_WORLD);
+    a_float.vmult(fy, distributed<float>(x, fine));
+    a.vmult(y, x);
+    check_range(name + ": A x in float", error(fy, y), 0., 1e-6);
+
+    for (const bool separate : {false, true})
+      {
+        std::vector<unsigned char> component;
+        if (separate)
+          for (unsigned int i = 0; i < n; ++i)
+            component.push_back(i % 17 == 0 ? 255 : i % 3);
+        Fidus::RowPattern    c_pattern;
+        SparseMatrix<double> c;
+        Fidus::galerkin_product(a, p, c_pattern, c, component);
+        DistributedRows<double> c_rows;
+        Fidus::distributed_galerkin_product(a_rows,
+                                            p_rows,
+                                            coarse,
+                                            c_rows,
+                                            component);
+        double largest = 0., e = 0.;
+        for (unsigned int i = 0; i < m; ++i)
+          for (auto it = c.begin(i); it != c.end(i); ++it)
+            largest = std::max(largest, std::abs(it->value()));
+        unsigned int missing = 0, not_first = 0;
+        for (unsigned int k = 0; k < c_rows.local_rows(); ++k)
+          {
+            const unsigned int i = c_rows.first_row() + k;
+            c_rows.for_row(k, [&](const unsigned int j, const double v) {
+              const auto g = c_rows.column_partitioner().local_to_global(j);
+              if (!c_pattern.exists(i, g))
+                ++missing;
+              else
+                e = std::max(e, std::abs(v - c.el(i, g)));
+            });
+            // The diagonal first in every row.
+            bool first_entry = true;
+            c_rows.for_row(k, [&](const unsigned int j, const double) {
+              if (first_entry &&
+                  c_rows.column_partitioner().local_to_global(j) != i)
+                ++not_first;
+              first_entry = false;
+            });
+          }
+        const std::string what =
+          name + (separate ? ", components apart" : "") + ": ";
+        check_range(what + "max |C - C_serial| / max |C_serial|",
+                    Utilities::MPI::max(e, MPI_COMM_WORLD) / largest,
+                    0.,
+                    1e-14);
+        check_range(what + "entries not in the serial pattern",
+                    Utilities::MPI::sum(missing, MPI_COMM_WORLD),
+                    0.,
+                    0.);
+        check_range(what + "rows whose diagonal is not first",
+                    Utilities::MPI::sum(not_first, MPI_COMM_WORLD),
+                    0.,
+                    0.);
+        const double total =
+          Utilities::MPI::sum(double(c_rows.n_local_entries()), MPI_COMM_WORLD);
+        check_range(what + "entries, against the serial pattern's",
+                    total - double(c_pattern.n_nonzero_elements()),
+                    0.,
+                    0.);
+        check_range(what + "size", c_rows.m() == m ? 1 : 0, 1, 1);
+      }
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  std::mt19937                     random(11);
+  check("unsymmetric A", false, random);
+  check("symmetric A", true, random);
+  return exit_code();
+}
