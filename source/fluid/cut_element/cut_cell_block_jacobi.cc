@@ -45,7 +45,59 @@ namespace Fidus
     const std::vector<std::vector<unsigned int>> &blocks,
     const std::vector<unsigned char>             &component)
   {
-    const unsigned int n = a.m();
+    std::vector<double> diagonal(a.m());
+    for (unsigned int i = 0; i < a.m(); ++i)
+      diagonal[i] = a.diag_element(i);
+    setup(
+      diagonal,
+      [&](const unsigned int                               i,
+          const std::function<void(unsigned int, double)> &f) {
+        for (auto it = a.begin(i); it != a.end(i); ++it)
+          if (couples_within_component(component, i, it->column()))
+            f(it->column(), it->value());
+      },
+      blocks);
+  }
+
+
+
+  void
+  CutCellBlockJacobi::initialize(
+    const DistributedRows<double>                &a,
+    const std::vector<std::vector<unsigned int>> &blocks,
+    const std::vector<unsigned char>             &component)
+  {
+    const unsigned int  n = a.local_rows();
+    std::vector<double> diagonal(n);
+    for (unsigned int k = 0; k < n; ++k)
+      diagonal[k] = a.diag_element(k);
+    const auto &columns = a.column_partitioner();
+    setup(
+      diagonal,
+      [&](const unsigned int                               k,
+          const std::function<void(unsigned int, double)> &f) {
+        a.for_row(k, [&](const unsigned int j, const double v) {
+          if (j < n && (component.empty() ||
+                        couples_within_component(component,
+                                                 a.first_row() + k,
+                                                 columns.local_to_global(j))))
+            f(j, v);
+        });
+      },
+      blocks);
+  }
+
+
+
+  void
+  CutCellBlockJacobi::setup(
+    const std::vector<double> &diagonal,
+    const std::function<void(unsigned int,
+                             const std::function<void(unsigned int, double)> &)>
+                                                 &row,
+    const std::vector<std::vector<unsigned int>> &blocks)
+  {
+    const unsigned int n = diagonal.size();
     block_start.assign(1, 0);
     rows.clear();
     inverse_start.assign(1, 0);
@@ -69,10 +121,10 @@ namespace Fidus
           position[block[p]] = p;
         block_matrix.reinit(m, m);
         for (unsigned int p = 0; p < m; ++p)
-          for (auto it = a.begin(block[p]); it != a.end(block[p]); ++it)
-            if (position[it->column()] >= 0 &&
-                couples_within_component(component, block[p], it->column()))
-              block_matrix(p, position[it->column()]) = it->value();
+          row(block[p], [&](const unsigned int j, const double v) {
+            if (j < n && position[j] >= 0)
+              block_matrix(p, position[j]) = v;
+          });
         for (unsigned int p = 0; p < m; ++p)
           position[block[p]] = -1;
         // The inverse from the Cholesky factor (LAPACK's potrf and potri),
@@ -106,7 +158,7 @@ namespace Fidus
     inverse_diagonal.reinit(n);
     for (unsigned int i = 0; i < n; ++i)
       {
-        const double d      = a.diag_element(i);
+        const double d      = diagonal[i];
         inverse_diagonal[i] = count[i] > 0 ? 0. : d > 0. ? 1. / d : 1.;
       }
     for (unsigned int b = 0; b < n_blocks(); ++b)
@@ -122,13 +174,14 @@ namespace Fidus
 
 
 
-  template <typename Number>
+  template <typename VectorType>
   void
-  CutCellBlockJacobi::vmult(Vector<Number>       &dst,
-                            const Vector<Number> &src) const
+  CutCellBlockJacobi::vmult(VectorType &dst, const VectorType &src) const
   {
-    for (unsigned int i = 0; i < dst.size(); ++i)
-      dst[i] = src[i] * inverse_diagonal[i];
+    auto       *out = dst.begin();
+    const auto *in  = src.begin();
+    for (unsigned int i = 0; i < inverse_diagonal.size(); ++i)
+      out[i] = in[i] * inverse_diagonal[i];
     for (unsigned int b = 0; b < n_blocks(); ++b)
       {
         const unsigned int *const r = rows.data() + block_start[b];
@@ -136,7 +189,7 @@ namespace Fidus
         x.resize(m);
         y.assign(m, 0.);
         for (unsigned int p = 0; p < m; ++p)
-          x[p] = src[r[p]];
+          x[p] = in[r[p]];
         // y = B x from B's upper triangle: row p gives y_p its part on and
         // right of the diagonal, and by symmetry x_p times the row to the
         // y_q with q > p.
@@ -154,7 +207,7 @@ namespace Fidus
             entry += m - p;
           }
         for (unsigned int p = 0; p < m; ++p)
-          dst[r[p]] += y[p];
+          out[r[p]] += y[p];
       }
   }
 
@@ -162,4 +215,12 @@ namespace Fidus
   CutCellBlockJacobi::vmult(Vector<double> &, const Vector<double> &) const;
   template void
   CutCellBlockJacobi::vmult(Vector<float> &, const Vector<float> &) const;
+  template void
+  CutCellBlockJacobi::vmult(
+    LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &) const;
+  template void
+  CutCellBlockJacobi::vmult(
+    LinearAlgebra::distributed::Vector<float> &,
+    const LinearAlgebra::distributed::Vector<float> &) const;
 } // namespace Fidus

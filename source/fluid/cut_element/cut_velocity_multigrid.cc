@@ -10,8 +10,10 @@
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
-#include <fidus/fluid/cut_element/galerkin_product.h>
+#include <fidus/fluid/cut_element/distributed_galerkin_product.h>
+#include <fidus/fluid/cut_element/sparse_matrix_rows.h>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 namespace Fidus
@@ -143,6 +145,92 @@ namespace Fidus
         }
       return rows;
     }
+
+    /// This rank's share of @p n rows split evenly among the ranks of
+    /// @p comm in contiguous ranges.
+    IndexSet
+    even_range(const unsigned int n, const MPI_Comm comm)
+    {
+      const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
+      return contiguous_range(std::size_t(n) * (rank + 1) / ranks -
+                                std::size_t(n) * rank / ranks,
+                              comm);
+    }
+
+    /**
+     * The whole matrix of which every rank holds @p rows (SparseMatrixRows
+     * or DistributedRows<double>), on every rank: the coarsest level,
+     * which every rank factorises.
+     */
+    template <typename Rows>
+    void
+    gather_whole(const Rows           &rows,
+                 SparsityPattern      &pattern,
+                 SparseMatrix<double> &matrix)
+    {
+      const auto                          &columns = rows.column_partitioner();
+      std::vector<types::global_dof_index> packed;
+      std::vector<double>                  values;
+      for (unsigned int k = 0; k < rows.local_rows(); ++k)
+        {
+          packed.push_back(rows.first_row() + k);
+          const std::size_t count_at = packed.size();
+          packed.push_back(0);
+          rows.for_row(k, [&](const unsigned int j, const double v) {
+            packed.push_back(columns.local_to_global(j));
+            values.push_back(v);
+            ++packed[count_at];
+          });
+        }
+      const auto all_packed =
+        Utilities::MPI::all_gather(rows.get_mpi_communicator(), packed);
+      const auto all_values =
+        Utilities::MPI::all_gather(rows.get_mpi_communicator(), values);
+      const unsigned int     n = columns.size();
+      DynamicSparsityPattern dsp(n, n);
+      const auto             walk = [&](const auto &f) {
+        for (unsigned int r = 0; r < all_packed.size(); ++r)
+          {
+            std::size_t at = 0, value_at = 0;
+            while (at < all_packed[r].size())
+              {
+                const auto        row   = all_packed[r][at];
+                const std::size_t count = all_packed[r][at + 1];
+                for (std::size_t e = 0; e < count; ++e)
+                  f(row,
+                    all_packed[r][at + 2 + e],
+                    all_values[r][value_at + e]);
+                at += 2 + count;
+                value_at += count;
+              }
+          }
+      };
+      walk([&](const auto i, const auto j, const double) { dsp.add(i, j); });
+      pattern.copy_from(dsp);
+      matrix.reinit(pattern);
+      walk([&](const auto i, const auto j, const double v) {
+        matrix.set(i, j, v);
+      });
+    }
+
+    /// Block Jacobi's set-up on the finest level, read in place.
+    inline void
+    initialize_blocks(CutCellBlockJacobi                           &jacobi,
+                      const SparseMatrixRows                       &rows,
+                      const std::vector<std::vector<unsigned int>> &blocks,
+                      const std::vector<unsigned char>             &component)
+    {
+      jacobi.initialize(rows.matrix(), blocks, component);
+    }
+    inline void
+    initialize_blocks(CutCellBlockJacobi                           &jacobi,
+                      const DistributedRows<double>                &rows,
+                      const std::vector<std::vector<unsigned int>> &blocks,
+                      const std::vector<unsigned char>             &component)
+    {
+      jacobi.initialize(rows, blocks, component);
+    }
   } // namespace
 
 
@@ -170,182 +258,155 @@ namespace Fidus
     const std::vector<unsigned int> &velocity_unknowns,
     const unsigned int               n_rigid)
   {
-    finest = &matrix;
+    build(SparseMatrixRows(matrix), velocity_unknowns, n_rigid);
+  }
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::initialize(
+    const DistributedRows<double>   &matrix,
+    const std::vector<unsigned int> &velocity_unknowns,
+    const unsigned int               n_rigid)
+  {
+    build(matrix, velocity_unknowns, n_rigid);
+  }
+
+
+
+  template <int dim>
+  template <typename Rows>
+  void
+  CutVelocityMultigrid<dim>::build(
+    const Rows                      &finest,
+    const std::vector<unsigned int> &velocity_unknowns,
+    const unsigned int               n_rigid)
+  {
+    communicator = finest.get_mpi_communicator();
+    finest_double.reset();
+    coarse.clear();
+    prolongation.clear();
+    block_jacobi.clear();
+    level_float.clear();
+    prolongation_float.clear();
     row_component.clear();
     if (settings.separate_components)
-      {
-        separate_components(matrix, velocity_unknowns);
-        if (!settings.single_precision)
-          finest = &separated;
-      }
-    // The finest level read without its couplings between components
-    // (none once #separated holds it).
-    const std::vector<unsigned char> all_entries;
-    const auto                      &finest_components =
-      finest == &matrix ? row_component : all_entries;
-    prolongation_pattern.clear();
-    prolongation.clear();
-    coarse_pattern.clear();
-    coarse.clear();
-    smoother.clear();
-    block_jacobi.clear();
-    residual_f.clear();
-    rhs_f.clear();
-    solution_f.clear();
-
-    // Coarsest first; the last one is the solve's mesh.
-    const auto meshes =
-      MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
-        system.get_triangulation());
-    const unsigned int  n_levels = meshes.size();
-    const FESystem<dim> fe(FE_Q<dim>(2), dim);
-    // Level l (the finest is 0) is meshes[n_levels - 1 - l].
-    std::vector<std::unique_ptr<DoFHandler<dim>>> dofs(n_levels);
-    std::vector<AffineConstraints<double>>        constraints(n_levels);
-    for (unsigned int l = 1; l < n_levels; ++l)
-      {
-        dofs[l] = std::make_unique<DoFHandler<dim>>(*meshes[n_levels - 1 - l]);
-        dofs[l]->distribute_dofs(fe);
-        AffineConstraints<double> &c = constraints[l];
-        DoFTools::make_hanging_node_constraints(*dofs[l], c);
-        for (const unsigned int axis : periodic_axes)
-          DoFTools::make_periodicity_constraints(*dofs[l],
-                                                 2 * axis,
-                                                 2 * axis + 1,
-                                                 axis,
-                                                 c);
-        // The box faces (2d, 2d + 1 for axis d) carry the velocity: the
-        // correction is zero there.
-        for (unsigned int face = 0; face < 2 * dim; ++face)
-          if (std::find(periodic_axes.begin(), periodic_axes.end(), face / 2) ==
-              periodic_axes.end())
-            VectorTools::interpolate_boundary_values(
-              *dofs[l],
-              face,
-              Functions::ZeroFunction<dim>(dim),
-              c);
-        c.close();
-      }
+      row_component = finest_components(velocity_unknowns,
+                                        finest.column_partitioner().size());
+    const Levels levels = make_levels(n_rigid, finest.locally_owned_rows());
+    const unsigned int n_levels = owned.size();
 
     // The finest level's rows: the system's unconstrained velocities, in
     // the caller's numbering, divided by the scaling.
     std::vector<int> local(system.n_dofs(), -1);
     for (unsigned int k = 0; k < velocity_unknowns.size(); ++k)
       local[velocity_unknowns[k]] = k;
+    // The finest level without its couplings between components, with
+    // global columns (copied in float, or in double for the double cycle).
+    const auto &finest_columns = finest.column_partitioner();
+    const auto  finest_row     = [&](const unsigned int k, const auto &f) {
+      const unsigned int i = finest.first_row() + k;
+      finest.for_row(k, [&](const unsigned int j, const double v) {
+        const unsigned int g = finest_columns.local_to_global(j);
+        if (couples_within_component(row_component, i, g))
+          f(g, v);
+      });
+    };
+
+    // Level by level: P_l, A_{l+1} = P^T A_l P, level l's smoother blocks
+    // (from A_l in double) and its float copies; A_l and P_l in double
+    // are freed as soon as they are copied, so that the set-up never
+    // holds the whole hierarchy twice.
+    coarse.resize(n_levels - 1);
+    prolongation.resize(n_levels - 1);
     for (unsigned int l = 0; l + 1 < n_levels; ++l)
       {
-        const DoFHandler<dim> &fine = l == 0 ? system : *dofs[l];
-        std::vector<bool>      keep(fine.n_dofs());
-        for (unsigned int i = 0; i < fine.n_dofs(); ++i)
-          keep[i] = l == 0 ?
-                      local[i] >= 0 && !system_constraints.is_constrained(i) :
-                      !constraints[l].is_constrained(i);
-        const std::vector<Row> rows =
-          prolongation_rows<dim>(fine, keep, *dofs[l + 1], constraints[l + 1]);
-        // The rigid unknowns follow the velocities on every level, the
-        // same on all.
-        const unsigned int n_rows =
-          (l == 0 ? velocity_unknowns.size() : fine.n_dofs()) + n_rigid;
-        const unsigned int     n_coarse = dofs[l + 1]->n_dofs();
-        DynamicSparsityPattern dsp(n_rows, n_coarse + n_rigid);
-        for (unsigned int i = 0; i < rows.size(); ++i)
-          for (const auto &e : rows[i])
-            dsp.add(l == 0 ? local[i] : i, e.first);
-        for (unsigned int k = 0; k < n_rigid; ++k)
-          dsp.add(n_rows - n_rigid + k, n_coarse + k);
-        prolongation_pattern.push_back(std::make_unique<SparsityPattern>());
-        prolongation_pattern.back()->copy_from(dsp);
-        prolongation.push_back(
-          std::make_unique<SparseMatrix<double>>(*prolongation_pattern.back()));
-        for (unsigned int i = 0; i < rows.size(); ++i)
-          for (const auto &e : rows[i])
-            prolongation.back()->set(l == 0 ? local[i] : i,
-                                     e.first,
-                                     l == 0 ? e.second / scale[i] : e.second);
-        for (unsigned int k = 0; k < n_rigid; ++k)
-          prolongation.back()->set(n_rows - n_rigid + k, n_coarse + k, 1.);
+        prolongation[l] =
+          make_prolongation(l, levels, local, velocity_unknowns, n_rigid);
+        // Unknowns that reach no fluid (inside a particle) or are
+        // constrained have empty rows: a unit diagonal keeps them
+        // decoupled and zero.
+        coarse[l] = std::make_unique<DistributedRows<double>>();
+        if (l == 0)
+          distributed_galerkin_product(finest,
+                                       *prolongation[l],
+                                       owned[1],
+                                       *coarse[l],
+                                       row_component);
+        else
+          distributed_galerkin_product(*coarse[l - 1],
+                                       *prolongation[l],
+                                       owned[l + 1],
+                                       *coarse[l]);
+        for (unsigned int k = 0; k < coarse[l]->local_rows(); ++k)
+          if (coarse[l]->diag_element(k) == 0.)
+            coarse[l]->diag_element(k) = 1.;
 
-        // A_{l+1} = P^T A_l P. Unknowns that reach no fluid (inside a
-        // particle) or are constrained have empty rows: a unit diagonal
-        // keeps them decoupled and zero.
-        coarse_pattern.push_back(std::make_unique<RowPattern>());
-        coarse.push_back(std::make_unique<SparseMatrix<double>>());
-        galerkin_product(level_matrix(l),
-                         *prolongation.back(),
-                         *coarse_pattern.back(),
-                         *coarse.back(),
-                         l == 0 ? finest_components : all_entries);
-        for (unsigned int i = 0; i < coarse.back()->m(); ++i)
-          if (coarse.back()->diag_element(i) == 0.)
-            coarse.back()->diag_element(i) = 1.;
-      }
-
-    setup_smoothers(dofs, constraints, local, finest_components);
-    coarsest.initialize(level_matrix(n_levels - 1));
-    if (settings.single_precision)
-      {
-        setup_single_precision();
-        return;
-      }
-    residual.resize(n_levels);
-    level_rhs.resize(n_levels);
-    level_solution.resize(n_levels);
-    for (unsigned int l = 0; l < n_levels; ++l)
-      {
-        residual[l].reinit(level_matrix(l).m());
-        level_rhs[l].reinit(level_matrix(l).m());
-        level_solution[l].reinit(level_matrix(l).m());
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  CutVelocityMultigrid<dim>::setup_smoothers(
-    const std::vector<std::unique_ptr<DoFHandler<dim>>> &dofs,
-    const std::vector<AffineConstraints<double>>        &constraints,
-    const std::vector<int>                              &local,
-    const std::vector<unsigned char>                    &finest_components)
-  {
-    const unsigned int               n_levels = coarse.size() + 1;
-    const std::vector<unsigned char> all_entries;
-    for (unsigned int l = 0; l + 1 < n_levels; ++l)
-      {
-        const SparseMatrix<double>       &a = level_matrix(l);
-        typename Smoother::AdditionalData data;
-        data.degree              = settings.smoother_degree;
-        data.smoothing_range     = settings.smoothing_range;
-        data.eig_cg_n_iterations = 12;
-        data.preconditioner      = std::make_shared<CutCellBlockJacobi>();
-        data.preconditioner->initialize(
-          a,
+        const unsigned int first =
+          owned[l].n_elements() > 0 ? owned[l].nth_index_in_set(0) : 0;
+        const auto blocks =
           settings.cut_cell_blocks ?
-            cut_cell_blocks(l == 0 ? system : *dofs[l],
-                            l == 0 ? system_constraints : constraints[l],
+            cut_cell_blocks(l == 0 ? system : *levels.dofs[l],
+                            l == 0 ? system_constraints : levels.constraints[l],
                             l == 0,
-                            local) :
-            std::vector<std::vector<unsigned int>>(),
-          l == 0 ? finest_components : all_entries);
-        block_jacobi.push_back(data.preconditioner);
+                            local,
+                            first,
+                            owned[l].n_elements()) :
+            std::vector<std::vector<unsigned int>>();
+        block_jacobi.push_back(std::make_shared<CutCellBlockJacobi>());
+        if (l == 0)
+          initialize_blocks(*block_jacobi.back(),
+                            finest,
+                            blocks,
+                            row_component);
+        else
+          block_jacobi.back()->initialize(*coarse[l - 1], blocks);
+
         if (!settings.single_precision)
+          continue;
+        level_float.push_back(std::make_unique<DistributedRows<float>>());
+        if (l == 0)
+          level_float.back()->fill(owned[0],
+                                   owned[0],
+                                   finest_row,
+                                   communicator);
+        else
           {
-            smoother.push_back(std::make_unique<Smoother>());
-            smoother.back()->initialize(a, data);
+            level_float.back()->copy_from(*coarse[l - 1]);
+            coarse[l - 1].reset();
           }
+        prolongation_float.push_back(
+          std::make_unique<DistributedRows<float>>());
+        prolongation_float.back()->copy_from(*prolongation[l]);
+        prolongation[l].reset();
       }
+
+    if (n_levels == 1)
+      gather_whole(finest, coarsest_pattern, coarsest_matrix);
+    else
+      gather_whole(*coarse.back(), coarsest_pattern, coarsest_matrix);
+    coarsest.initialize(coarsest_matrix);
+    if (settings.single_precision)
+      coarse.clear();
+    else if (n_levels > 1)
+      {
+        finest_double = std::make_unique<DistributedRows<double>>();
+        finest_double->fill(owned[0], owned[0], finest_row, communicator);
+      }
+    setup_cycle();
   }
 
 
 
   template <int dim>
-  void
-  CutVelocityMultigrid<dim>::separate_components(
-    const SparseMatrix<double>      &matrix,
-    const std::vector<unsigned int> &velocity_unknowns)
+  std::vector<unsigned char>
+  CutVelocityMultigrid<dim>::finest_components(
+    const std::vector<unsigned int> &velocity_unknowns,
+    const unsigned int               n_rows) const
   {
-    // Each row's velocity component (the rigid rows have none and keep
-    // all their entries, so the particles stay coupled to their fluid).
+    // The rigid rows have none and keep all their entries, so the
+    // particles stay coupled to their fluid.
     std::vector<unsigned char>           dof_component(system.n_dofs(), 255);
     std::vector<types::global_dof_index> indices;
     for (const auto &cell : system.active_cell_iterators())
@@ -356,21 +417,191 @@ namespace Fidus
         for (unsigned int i = 0; i < indices.size(); ++i)
           dof_component[indices[i]] = fe.system_to_component_index(i).first;
       }
-    const unsigned int n_u = velocity_unknowns.size();
-    row_component.assign(matrix.m(), 255);
-    for (unsigned int k = 0; k < n_u; ++k)
-      row_component[k] = dof_component[velocity_unknowns[k]];
-    separated_pattern
-      .fill(matrix.m(), matrix.n(), [&](const unsigned int i, const auto &f) {
-        for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-          if (couples_within_component(row_component, i, it->column()))
-            f(it->column());
-      });
-    if (!settings.single_precision)
+    std::vector<unsigned char> component(n_rows, 255);
+    for (unsigned int k = 0; k < velocity_unknowns.size(); ++k)
+      component[k] = dof_component[velocity_unknowns[k]];
+    return component;
+  }
+
+
+
+  template <int dim>
+  typename CutVelocityMultigrid<dim>::Levels
+  CutVelocityMultigrid<dim>::make_levels(const unsigned int n_rigid,
+                                         const IndexSet    &finest_rows)
+  {
+    Levels levels;
+    // Coarsest first; the last one is the solve's mesh. Level l (the
+    // finest is 0) is meshes[n_levels - 1 - l].
+    levels.meshes =
+      MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
+        system.get_triangulation());
+    const unsigned int  n_levels = levels.meshes.size();
+    const FESystem<dim> fe(FE_Q<dim>(2), dim);
+    levels.dofs.resize(n_levels);
+    levels.constraints.resize(n_levels);
+    owned.assign(1, finest_rows);
+    for (unsigned int l = 1; l < n_levels; ++l)
       {
-        separated.reinit(separated_pattern);
-        copy_separated(matrix, separated);
+        auto &dofs = levels.dofs[l];
+        dofs =
+          std::make_unique<DoFHandler<dim>>(*levels.meshes[n_levels - 1 - l]);
+        dofs->distribute_dofs(fe);
+        AffineConstraints<double> &c = levels.constraints[l];
+        DoFTools::make_hanging_node_constraints(*dofs, c);
+        for (const unsigned int axis : periodic_axes)
+          DoFTools::make_periodicity_constraints(*dofs,
+                                                 2 * axis,
+                                                 2 * axis + 1,
+                                                 axis,
+                                                 c);
+        // The box faces (2d, 2d + 1 for axis d) carry the velocity: the
+        // correction is zero there.
+        for (unsigned int face = 0; face < 2 * dim; ++face)
+          if (std::find(periodic_axes.begin(), periodic_axes.end(), face / 2) ==
+              periodic_axes.end())
+            VectorTools::interpolate_boundary_values(
+              *dofs,
+              face,
+              Functions::ZeroFunction<dim>(dim),
+              c);
+        c.close();
+        // The rigid unknowns follow the velocities on every level.
+        owned.push_back(even_range(dofs->n_dofs() + n_rigid, communicator));
       }
+    return levels;
+  }
+
+
+
+  template <int dim>
+  std::unique_ptr<DistributedRows<double>>
+  CutVelocityMultigrid<dim>::make_prolongation(
+    const unsigned int               l,
+    const Levels                    &levels,
+    const std::vector<int>          &local,
+    const std::vector<unsigned int> &velocity_unknowns,
+    const unsigned int               n_rigid) const
+  {
+    const DoFHandler<dim> &fine = l == 0 ? system : *levels.dofs[l];
+    std::vector<bool>      keep(fine.n_dofs());
+    for (unsigned int i = 0; i < fine.n_dofs(); ++i)
+      keep[i] = l == 0 ?
+                  local[i] >= 0 && !system_constraints.is_constrained(i) :
+                  !levels.constraints[l].is_constrained(i);
+    const std::vector<Row> rows =
+      prolongation_rows<dim>(fine,
+                             keep,
+                             *levels.dofs[l + 1],
+                             levels.constraints[l + 1]);
+    // This rank's rows, by their row on level l; the rigid unknowns carried
+    // unchanged.
+    const unsigned int n_rows =
+      (l == 0 ? velocity_unknowns.size() : fine.n_dofs()) + n_rigid;
+    const unsigned int       n_coarse = levels.dofs[l + 1]->n_dofs();
+    std::vector<const Row *> by_row(n_rows, nullptr);
+    for (unsigned int i = 0; i < rows.size(); ++i)
+      if (!rows[i].empty())
+        by_row[l == 0 ? local[i] : i] = &rows[i];
+    const unsigned int first =
+      owned[l].n_elements() > 0 ? owned[l].nth_index_in_set(0) : 0;
+    std::vector<std::size_t>             start{0};
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    for (unsigned int k = 0; k < owned[l].n_elements(); ++k)
+      {
+        const unsigned int i = first + k;
+        if (i >= n_rows - n_rigid)
+          {
+            columns.push_back(n_coarse + i - (n_rows - n_rigid));
+            values.push_back(1.);
+          }
+        else if (by_row[i] != nullptr)
+          for (const auto &e : *by_row[i])
+            {
+              columns.push_back(e.first);
+              values.push_back(l == 0 ? e.second / scale[velocity_unknowns[i]] :
+                                        e.second);
+            }
+        start.push_back(columns.size());
+      }
+    auto p = std::make_unique<DistributedRows<double>>();
+    p->reinit(owned[l], owned[l + 1], start, columns, values, communicator);
+    return p;
+  }
+
+
+
+  template <int dim>
+  void
+  CutVelocityMultigrid<dim>::setup_cycle()
+  {
+    const unsigned int n_levels = owned.size();
+    // The smoothers: in single precision on the float levels, which the
+    // V-cycle's products are bound by the memory traffic of, and a
+    // preconditioner needs no more digits than FGMRES takes from it (the
+    // same iterations, the answers within 5e-10 of the double cycle's on
+    // one sphere and the 3D pair; doc/theory/cut_element.md, "Solvers").
+    // The cut-cell blocks' inverses are float already. The coarsest level
+    // keeps its double factorisation.
+    smoother.clear();
+    smoother_float.clear();
+    for (unsigned int l = 0; l + 1 < n_levels; ++l)
+      if (settings.single_precision)
+        {
+          typename FloatSmoother::AdditionalData data;
+          data.degree              = settings.smoother_degree;
+          data.smoothing_range     = settings.smoothing_range;
+          data.eig_cg_n_iterations = 12;
+          data.preconditioner      = block_jacobi[l];
+          smoother_float.push_back(std::make_unique<FloatSmoother>());
+          smoother_float.back()->initialize(*level_float[l], data);
+        }
+      else
+        {
+          typename Smoother::AdditionalData data;
+          data.degree              = settings.smoother_degree;
+          data.smoothing_range     = settings.smoothing_range;
+          data.eig_cg_n_iterations = 12;
+          data.preconditioner      = block_jacobi[l];
+          smoother.push_back(std::make_unique<Smoother>());
+          smoother.back()->initialize(level_matrix(l), data);
+        }
+    residual_f.clear();
+    rhs_f.clear();
+    solution_f.clear();
+    residual.clear();
+    level_rhs.clear();
+    level_solution.clear();
+    for (unsigned int l = 0; l < n_levels; ++l)
+      if (settings.single_precision)
+        {
+          residual_f.emplace_back(owned[l], communicator);
+          rhs_f.emplace_back(owned[l], communicator);
+          solution_f.emplace_back(owned[l], communicator);
+        }
+      else
+        {
+          residual.emplace_back(owned[l], communicator);
+          level_rhs.emplace_back(owned[l], communicator);
+          level_solution.emplace_back(owned[l], communicator);
+        }
+    coarse_x.reinit(coarsest_matrix.m());
+    coarse_b.reinit(coarsest_matrix.m());
+    src_f.reinit(settings.single_precision ? owned[0] : IndexSet(),
+                 communicator);
+    dst_f.reinit(src_f);
+    src_d.reinit(owned[0], communicator);
+    dst_d.reinit(src_d);
+  }
+
+
+
+  template <int dim>
+  const DistributedRows<double> &
+  CutVelocityMultigrid<dim>::level_matrix(const unsigned int level) const
+  {
+    return level == 0 ? *finest_double : *coarse[level - 1];
   }
 
 
@@ -378,150 +609,76 @@ namespace Fidus
   template <int dim>
   template <typename Number>
   void
-  CutVelocityMultigrid<dim>::copy_separated(const SparseMatrix<double> &matrix,
-                                            SparseMatrix<Number> &out) const
+  CutVelocityMultigrid<dim>::coarsest_solve(LevelVector<Number>       &x,
+                                            const LevelVector<Number> &b) const
   {
-    // Both rows hold their diagonal first and then ascending columns, and
-    // the kept entries are a subsequence of the block's: copied in one
-    // walk.
-    on_row_ranges(
-      matrix.m(),
-      4,
-      [&](const unsigned int first, const unsigned int last) {
-        for (unsigned int i = first; i < last; ++i)
-          {
-            auto out_entry = out.begin(i);
-            for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
-              if (couples_within_component(row_component, i, it->column()))
-                {
-                  AssertThrow(out_entry->column() == it->column(),
-                              ExcInternalError());
-                  out_entry->value() = it->value();
-                  ++out_entry;
-                }
-          }
-      });
+    const IndexSet    &rows = b.locally_owned_elements();
+    const unsigned int first =
+      rows.n_elements() > 0 ? rows.nth_index_in_set(0) : 0;
+    coarse_b = 0.;
+    for (unsigned int k = 0; k < rows.n_elements(); ++k)
+      coarse_b[first + k] = b.local_element(k);
+    if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+      Utilities::MPI::sum(coarse_b, communicator, coarse_b);
+    coarsest.vmult(coarse_x, coarse_b);
+    for (unsigned int k = 0; k < rows.n_elements(); ++k)
+      x.local_element(k) = coarse_x[first + k];
   }
 
 
 
   template <int dim>
+  template <typename Number>
   void
-  CutVelocityMultigrid<dim>::setup_single_precision()
+  CutVelocityMultigrid<dim>::v_cycle(const unsigned int         level,
+                                     LevelVector<Number>       &x,
+                                     const LevelVector<Number> &b) const
   {
-    // The levels, the prolongations and the smoothers in float: the
-    // V-cycle is bound by the memory traffic of its products, and a
-    // preconditioner needs no more digits than FGMRES takes from it (the
-    // same iterations, the answers within 5e-10 of the double cycle's on
-    // one sphere and the 3D pair; doc/theory/cut_element.md, "Solvers").
-    // The cut-cell blocks' inverses are float already. The coarsest level
-    // keeps its double factorisation.
-    const unsigned int n_levels = coarse.size() + 1;
-    level_float.clear();
-    prolongation_float.clear();
-    smoother_float.clear();
-    for (unsigned int l = 0; l + 1 < n_levels; ++l)
+    if (level + 1 == owned.size())
       {
-        const SparseMatrix<double> &a = level_matrix(l);
-        if (l == 0 && !row_component.empty())
-          {
-            // The finest level separated straight from the caller's block.
-            level_float.push_back(
-              std::make_unique<SparseMatrix<float>>(separated_pattern));
-            copy_separated(a, *level_float.back());
-          }
-        else
-          {
-            level_float.push_back(
-              std::make_unique<SparseMatrix<float>>(a.get_sparsity_pattern()));
-            level_float.back()->copy_from(a);
-          }
-        prolongation_float.push_back(
-          std::make_unique<SparseMatrix<float>>(*prolongation_pattern[l]));
-        prolongation_float.back()->copy_from(*prolongation[l]);
-        typename FloatSmoother::AdditionalData data;
-        data.degree              = settings.smoother_degree;
-        data.smoothing_range     = settings.smoothing_range;
-        data.eig_cg_n_iterations = 12;
-        data.preconditioner      = block_jacobi[l];
-        smoother_float.push_back(std::make_unique<FloatSmoother>());
-        smoother_float.back()->initialize(*level_float.back(), data);
-      }
-    for (unsigned int l = 0; l < n_levels; ++l)
-      {
-        const unsigned int m = level_matrix(l).m();
-        residual_f.emplace_back(m);
-        rhs_f.emplace_back(m);
-        solution_f.emplace_back(m);
-      }
-    coarse_x.reinit(level_matrix(n_levels - 1).m());
-    coarse_b.reinit(coarse_x.size());
-    src_f.reinit(finest->m());
-    dst_f.reinit(finest->m());
-    // The double copies are no longer read (the finest is the caller's).
-    for (auto &p : prolongation)
-      p->clear();
-    for (auto &c : coarse)
-      c->clear();
-    // (The float finest level keeps the separated pattern.)
-    separated.clear();
-  }
-
-
-
-  template <int dim>
-  const SparseMatrix<double> &
-  CutVelocityMultigrid<dim>::level_matrix(const unsigned int level) const
-  {
-    return level == 0 ? *finest : *coarse[level - 1];
-  }
-
-
-
-  template <int dim>
-  void
-  CutVelocityMultigrid<dim>::v_cycle(const unsigned int    level,
-                                     Vector<double>       &x,
-                                     const Vector<double> &b) const
-  {
-    if (level + 1 == residual.size())
-      {
-        coarsest.vmult(x, b);
+        coarsest_solve(x, b);
         return;
       }
-    const SparseMatrix<double> &a = level_matrix(level);
-    smoother[level]->vmult(x, b);
-    a.vmult(residual[level], x);
-    residual[level].sadd(-1., 1., b);
-    prolongation[level]->Tvmult(level_rhs[level + 1], residual[level]);
-    v_cycle(level + 1, level_solution[level + 1], level_rhs[level + 1]);
-    prolongation[level]->vmult_add(x, level_solution[level + 1]);
-    smoother[level]->step(x, b);
+    if constexpr (std::is_same_v<Number, float>)
+      {
+        const DistributedRows<float> &a = *level_float[level];
+        smoother_float[level]->vmult(x, b);
+        a.vmult(residual_f[level], x);
+        residual_f[level].sadd(-1.f, 1.f, b);
+        prolongation_float[level]->Tvmult(rhs_f[level + 1], residual_f[level]);
+        v_cycle(level + 1, solution_f[level + 1], rhs_f[level + 1]);
+        prolongation_float[level]->vmult_add(x, solution_f[level + 1]);
+        smoother_float[level]->step(x, b);
+      }
+    else
+      {
+        const DistributedRows<double> &a = level_matrix(level);
+        smoother[level]->vmult(x, b);
+        a.vmult(residual[level], x);
+        residual[level].sadd(-1., 1., b);
+        prolongation[level]->Tvmult(level_rhs[level + 1], residual[level]);
+        v_cycle(level + 1, level_solution[level + 1], level_rhs[level + 1]);
+        prolongation[level]->vmult_add(x, level_solution[level + 1]);
+        smoother[level]->step(x, b);
+      }
   }
 
 
 
   template <int dim>
   void
-  CutVelocityMultigrid<dim>::v_cycle_float(const unsigned int   level,
-                                           Vector<float>       &x,
-                                           const Vector<float> &b) const
+  CutVelocityMultigrid<dim>::vmult(
+    LinearAlgebra::distributed::Vector<double>       &dst,
+    const LinearAlgebra::distributed::Vector<double> &src) const
   {
-    if (level + 1 == residual_f.size())
+    if (!settings.single_precision)
       {
-        coarse_b = b;
-        coarsest.vmult(coarse_x, coarse_b);
-        x = coarse_x;
+        v_cycle(0, dst, src);
         return;
       }
-    const SparseMatrix<float> &a = *level_float[level];
-    smoother_float[level]->vmult(x, b);
-    a.vmult(residual_f[level], x);
-    residual_f[level].sadd(-1.f, 1.f, b);
-    prolongation_float[level]->Tvmult(rhs_f[level + 1], residual_f[level]);
-    v_cycle_float(level + 1, solution_f[level + 1], rhs_f[level + 1]);
-    prolongation_float[level]->vmult_add(x, solution_f[level + 1]);
-    smoother_float[level]->step(x, b);
+    std::copy(src.begin(), src.end(), src_f.begin());
+    v_cycle(0, dst_f, src_f);
+    std::copy(dst_f.begin(), dst_f.end(), dst.begin());
   }
 
 
@@ -531,14 +688,9 @@ namespace Fidus
   CutVelocityMultigrid<dim>::vmult(Vector<double>       &dst,
                                    const Vector<double> &src) const
   {
-    if (!settings.single_precision)
-      {
-        v_cycle(0, dst, src);
-        return;
-      }
-    src_f = src;
-    v_cycle_float(0, dst_f, src_f);
-    dst = dst_f;
+    std::copy(src.begin(), src.end(), src_d.begin());
+    vmult(dst_d, src_d);
+    std::copy(dst_d.begin(), dst_d.end(), dst.begin());
   }
 
 
@@ -565,12 +717,15 @@ namespace Fidus
     const DoFHandler<dim>           &level_dofs,
     const AffineConstraints<double> &level_constraints,
     const bool                       finest,
-    const std::vector<int>          &local) const
+    const std::vector<int>          &local,
+    const unsigned int               first,
+    const unsigned int               n_owned) const
   {
     // On the finest level a row is a system velocity (local >= 0; the
     // cells inside a particle have no DoFs, pressures no row); below it,
     // every unconstrained DoF of the level is its own row. Constrained
-    // unknowns are left out: their rows hold the diagonal alone.
+    // unknowns are left out: their rows hold the diagonal alone. Rows of
+    // other ranks too: a block is one rank's.
     std::vector<std::vector<unsigned int>> blocks;
     std::vector<types::global_dof_index>   indices;
     for (const auto &cell : level_dofs.active_cell_iterators())
@@ -584,7 +739,11 @@ namespace Fidus
         for (const auto i : indices)
           if (!level_constraints.is_constrained(i) &&
               (!finest || local[i] >= 0))
-            block.push_back(finest ? local[i] : i);
+            {
+              const unsigned int row = finest ? local[i] : i;
+              if (row >= first && row < first + n_owned)
+                block.push_back(row - first);
+            }
         if (!block.empty())
           blocks.push_back(std::move(block));
       }

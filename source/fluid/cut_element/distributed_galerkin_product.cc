@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.templates.h>
 #include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/distributed_galerkin_product.h>
+#include <fidus/fluid/cut_element/sparse_matrix_rows.h>
 #include <fidus/fluid/cut_element/sparse_rows.h>
 #include <map>
 #include <stdexcept>
@@ -100,8 +101,9 @@ namespace Fidus
      * owners), with P's columns renumbered compactly: @p coarse lists the
      * coarse global columns they reach, in order.
      */
+    template <typename RowsOfA>
     SparseRows
-    prolongation_by_column(const DistributedRows<double> &a,
+    prolongation_by_column(const RowsOfA                 &a,
                            const DistributedRows<double> &p,
                            std::vector<Index>            &coarse)
     {
@@ -132,53 +134,87 @@ namespace Fidus
           }
       const auto answered = Utilities::MPI::some_to_some(comm, replies);
 
-      // Every row with global columns, in A's local column numbering.
+      // The compact columns: P's own local columns (its owned coarse
+      // columns, then its ghost ones), then the columns only the fetched
+      // rows reach.
+      const auto        &pc  = p.column_partitioner();
+      const unsigned int n_p = pc.locally_owned_size() + pc.n_ghost_indices();
+      const auto         p_knows = [&pc](const Index g) {
+        return pc.in_local_range(g) || pc.is_ghost_entry(g);
+      };
+      std::vector<Index> extra;
+      for (const auto &answer : answered)
+        for_packed_row(answer.second,
+                       [&](const Index,
+                           const Index *cols,
+                           const double *,
+                           const std::size_t n) {
+                         for (std::size_t e = 0; e < n; ++e)
+                           if (!p_knows(cols[e]))
+                             extra.push_back(cols[e]);
+                       });
+      std::sort(extra.begin(), extra.end());
+      extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+      coarse.resize(n_p + extra.size());
+      for (unsigned int j = 0; j < n_p; ++j)
+        coarse[j] = pc.local_to_global(j);
+      std::copy(extra.begin(), extra.end(), coarse.begin() + n_p);
+
+      // The rows in A's local column numbering: P's own rows as they are,
+      // then the fetched ones in the order of A's ghost columns.
       const unsigned int n_own = p.local_rows();
       const unsigned int n_all = n_own + columns.n_ghost_indices();
-      std::vector<std::vector<std::pair<Index, double>>> rows(n_all);
+      SparseRows         out;
+      out.n_rows = n_all;
+      out.n_cols = coarse.size();
+      out.start.assign(n_all + 1, 0);
       for (unsigned int k = 0; k < n_own; ++k)
-        p.for_row(k, [&](const unsigned int j, const double v) {
-          rows[k].emplace_back(p.column_partitioner().local_to_global(j), v);
-        });
+        out.start[k + 1] = out.start[k] + p.row_length(k);
+      std::vector<std::pair<const Index *, const double *>> fetched(n_all -
+                                                                    n_own);
       for (const auto &answer : answered)
         for_packed_row(answer.second,
                        [&](const Index       row,
                            const Index      *cols,
                            const double     *vals,
                            const std::size_t n) {
-                         auto &r = rows[columns.global_to_local(row)];
-                         for (std::size_t e = 0; e < n; ++e)
-                           r.emplace_back(cols[e], vals[e]);
+                         const unsigned int k = columns.global_to_local(row);
+                         out.start[k + 1]     = n;
+                         fetched[k - n_own]   = {cols, vals};
                        });
-
-      coarse.clear();
-      for (const auto &row : rows)
-        for (const auto &e : row)
-          coarse.push_back(e.first);
-      std::sort(coarse.begin(), coarse.end());
-      coarse.erase(std::unique(coarse.begin(), coarse.end()), coarse.end());
-      SparseRows out;
-      out.n_rows = n_all;
-      out.n_cols = coarse.size();
-      for (const auto &row : rows)
+      for (unsigned int k = n_own; k < n_all; ++k)
+        out.start[k + 1] += out.start[k];
+      out.column.resize(out.start[n_all]);
+      out.value.resize(out.start[n_all]);
+      for (unsigned int k = 0; k < n_own; ++k)
         {
-          for (const auto &e : row)
-            {
-              out.column.push_back(
-                std::lower_bound(coarse.begin(), coarse.end(), e.first) -
-                coarse.begin());
-              out.value.push_back(e.second);
-            }
-          out.start.push_back(out.column.size());
+          std::size_t to = out.start[k];
+          p.for_row(k, [&](const unsigned int j, const double v) {
+            out.column[to] = j;
+            out.value[to]  = v;
+            ++to;
+          });
         }
+      for (unsigned int k = n_own; k < n_all; ++k)
+        for (std::size_t e = 0; e < out.start[k + 1] - out.start[k]; ++e)
+          {
+            const Index g = fetched[k - n_own].first[e];
+            out.column[out.start[k] + e] =
+              p_knows(g) ?
+                pc.global_to_local(g) :
+                n_p + (std::lower_bound(extra.begin(), extra.end(), g) -
+                       extra.begin());
+            out.value[out.start[k] + e] = fetched[k - n_own].second[e];
+          }
       return out;
     }
   } // namespace
 
 
 
+  template <typename RowsOfA>
   void
-  distributed_galerkin_product(const DistributedRows<double>    &a,
+  distributed_galerkin_product(const RowsOfA                    &a,
                                const DistributedRows<double>    &p,
                                const IndexSet                   &coarse_owned,
                                DistributedRows<double>          &c,
@@ -212,11 +248,14 @@ namespace Fidus
         p_rows);
       // P^T (A P) from this rank's fine rows: its own rows of P, whose
       // transpose has a row per compact coarse column.
-      SparseRows own = p_rows;
-      own.n_rows     = n;
-      own.start.resize(n + 1);
-      own.column.resize(own.start[n]);
-      own.value.resize(own.start[n]);
+      SparseRows own;
+      own.n_rows = n;
+      own.n_cols = p_rows.n_cols;
+      own.start.assign(p_rows.start.begin(), p_rows.start.begin() + n + 1);
+      own.column.assign(p_rows.column.begin(),
+                        p_rows.column.begin() + own.start[n]);
+      own.value.assign(p_rows.value.begin(),
+                       p_rows.value.begin() + own.start[n]);
       const SparseRows pt = transpose(own);
       return multiply(
         pt.n_rows,
@@ -227,13 +266,14 @@ namespace Fidus
         ap);
     }();
 
-    // Each coarse row to its owner; the rows owned here summed.
+    // Each coarse row to its owner. A row owned here is the product's row
+    // as it stands, unless other ranks sent parts of it: those rows are
+    // summed here, by column.
     const Owners       owners(coarse_owned, comm);
     const unsigned int me = Utilities::MPI::this_mpi_process(comm);
     const Index        first =
       coarse_owned.n_elements() > 0 ? coarse_owned.nth_index_in_set(0) : 0;
-    std::vector<std::vector<std::pair<Index, double>>> rows(
-      coarse_owned.n_elements());
+    std::vector<int> product_row(coarse_owned.n_elements(), -1);
     std::map<unsigned int, PackedRows> sends;
     std::vector<Index>                 row_columns;
     for (unsigned int r = 0; r < product.n_rows; ++r)
@@ -242,47 +282,72 @@ namespace Fidus
         const auto  begin = product.start[r], end = product.start[r + 1];
         if (begin == end)
           continue;
+        const unsigned int owner = owners(g);
+        if (owner == me)
+          {
+            product_row[g - first] = r;
+            continue;
+          }
         row_columns.clear();
         for (std::size_t e = begin; e < end; ++e)
           row_columns.push_back(coarse[product.column[e]]);
-        const unsigned int owner = owners(g);
-        if (owner == me)
-          for (std::size_t e = begin; e < end; ++e)
-            rows[g - first].emplace_back(row_columns[e - begin],
-                                         product.value[e]);
-        else
-          pack_row(sends[owner],
-                   g,
-                   row_columns.data(),
-                   product.value.data() + begin,
-                   end - begin);
+        pack_row(sends[owner],
+                 g,
+                 row_columns.data(),
+                 product.value.data() + begin,
+                 end - begin);
       }
+    std::map<Index, std::vector<std::pair<Index, double>>> summed;
     for (const auto &received : Utilities::MPI::some_to_some(comm, sends))
       for_packed_row(received.second,
                      [&](const Index       row,
                          const Index      *cols,
                          const double     *vals,
                          const std::size_t n_entries) {
+                       auto &entries = summed[row];
                        for (std::size_t e = 0; e < n_entries; ++e)
-                         rows[row - first].emplace_back(cols[e], vals[e]);
+                         entries.emplace_back(cols[e], vals[e]);
                      });
-
-    std::vector<std::size_t> start{0};
-    std::vector<Index>       columns;
-    std::vector<double>      values;
-    for (auto &row : rows)
+    for (auto &[row, entries] : summed)
       {
-        std::sort(row.begin(), row.end());
-        for (std::size_t e = 0; e < row.size(); ++e)
-          if (e > 0 && row[e].first == row[e - 1].first)
-            values.back() += row[e].second;
+        if (const int r = product_row[row - first]; r >= 0)
+          for (std::size_t e = product.start[r]; e < product.start[r + 1]; ++e)
+            entries.emplace_back(coarse[product.column[e]], product.value[e]);
+        std::sort(entries.begin(), entries.end());
+        std::vector<std::pair<Index, double>> merged;
+        for (const auto &e : entries)
+          if (!merged.empty() && merged.back().first == e.first)
+            merged.back().second += e.second;
           else
-            {
-              columns.push_back(row[e].first);
-              values.push_back(row[e].second);
-            }
-        start.push_back(columns.size());
+            merged.push_back(e);
+        entries.swap(merged);
       }
-    c.reinit(coarse_owned, coarse_owned, start, columns, values, comm);
+    c.fill(
+      coarse_owned,
+      coarse_owned,
+      [&](const unsigned int k, const auto &f) {
+        if (const auto s = summed.find(first + k); s != summed.end())
+          for (const auto &e : s->second)
+            f(e.first, e.second);
+        else if (const int r = product_row[k]; r >= 0)
+          for (std::size_t e = product.start[r]; e < product.start[r + 1]; ++e)
+            f(coarse[product.column[e]], product.value[e]);
+      },
+      comm);
   }
+
+
+
+  template void
+  distributed_galerkin_product(const DistributedRows<double> &,
+                               const DistributedRows<double> &,
+                               const IndexSet &,
+                               DistributedRows<double> &,
+                               const std::vector<unsigned char> &);
+  template void
+  distributed_galerkin_product(const SparseMatrixRows &,
+                               const DistributedRows<double> &,
+                               const IndexSet &,
+                               DistributedRows<double> &,
+                               const std::vector<unsigned char> &);
 } // namespace Fidus

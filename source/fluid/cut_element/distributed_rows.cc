@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <deal.II/base/parallel.h>
 #include <fidus/fluid/cut_element/distributed_rows.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <stdexcept>
@@ -27,6 +28,40 @@ namespace Fidus
 
   template <typename Number>
   void
+  DistributedRows<Number>::setup_columns(
+    const IndexSet                             &rows,
+    const IndexSet                             &owned_columns,
+    const std::vector<types::global_dof_index> &ghosts,
+    const MPI_Comm                              comm)
+  {
+    if (!rows.is_contiguous() || !owned_columns.is_contiguous())
+      throw std::invalid_argument(
+        "DistributedRows: the owned rows and columns must be contiguous "
+        "ranges");
+    communicator = comm;
+    owned_rows   = rows;
+    first        = rows.n_elements() > 0 ? rows.nth_index_in_set(0) : 0;
+    column_first =
+      owned_columns.n_elements() > 0 ? owned_columns.nth_index_in_set(0) : 0;
+    column_end = column_first + owned_columns.n_elements();
+    square     = rows.size() == owned_columns.size() &&
+             Utilities::MPI::min(rows == owned_columns ? 1u : 0u, comm) == 1;
+    IndexSet ghost_set(owned_columns.size());
+    ghost_set.add_indices(ghosts.begin(), ghosts.end());
+    partitioner = std::make_shared<Utilities::MPI::Partitioner>(owned_columns,
+                                                                ghost_set,
+                                                                comm);
+    import      = Utilities::MPI::max(ghosts.empty() ? 0u : 1u, comm) == 1;
+    if (import)
+      ghosted.reinit(partitioner);
+    else
+      ghosted.reinit(0);
+  }
+
+
+
+  template <typename Number>
+  void
   DistributedRows<Number>::reinit(
     const IndexSet                             &rows,
     const IndexSet                             &owned_columns,
@@ -35,65 +70,19 @@ namespace Fidus
     const std::vector<double>                  &values,
     const MPI_Comm                              comm)
   {
-    if (!rows.is_contiguous() || !owned_columns.is_contiguous() ||
-        start.size() != rows.n_elements() + 1 ||
+    if (start.size() != rows.n_elements() + 1 ||
         columns.size() != values.size() || start.back() != columns.size())
       throw std::invalid_argument(
-        "DistributedRows::reinit: the owned rows and columns must be "
-        "contiguous ranges and the rows' arrays match them");
-    communicator = comm;
-    owned_rows   = rows;
-    first        = rows.n_elements() > 0 ? rows.nth_index_in_set(0) : 0;
-    square       = rows.size() == owned_columns.size() &&
-             Utilities::MPI::min(rows == owned_columns ? 1u : 0u, comm) == 1;
-
-    std::vector<types::global_dof_index> ghosts;
-    for (const auto c : columns)
-      if (!owned_columns.is_element(c))
-        ghosts.push_back(c);
-    std::sort(ghosts.begin(), ghosts.end());
-    ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
-    IndexSet ghost_set(owned_columns.size());
-    ghost_set.add_indices(ghosts.begin(), ghosts.end());
-    partitioner = std::make_shared<Utilities::MPI::Partitioner>(owned_columns,
-                                                                ghost_set,
-                                                                comm);
-    import      = Utilities::MPI::max(ghosts.empty() ? 0u : 1u, comm) == 1;
-
-    const unsigned int n = rows.n_elements();
-    row_start.assign(n + 1, 0);
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        bool diagonal = false;
-        if (square)
-          for (std::size_t e = start[k]; e < start[k + 1]; ++e)
-            diagonal = diagonal || columns[e] == first + k;
-        row_start[k + 1] =
-          row_start[k] + start[k + 1] - start[k] + (square && !diagonal);
-      }
-    column.resize(row_start[n]);
-    value.assign(row_start[n], Number());
-    on_row_ranges(n, 4, [&](const unsigned int begin, const unsigned int end) {
-      for (unsigned int k = begin; k < end; ++k)
-        {
-          std::size_t to = row_start[k];
-          if (square)
-            column[to++] = k; // the diagonal first; its value below
-          for (std::size_t e = start[k]; e < start[k + 1]; ++e)
-            if (square && columns[e] == first + k)
-              value[row_start[k]] = values[e];
-            else
-              {
-                column[to] = partitioner->global_to_local(columns[e]);
-                value[to]  = values[e];
-                ++to;
-              }
-        }
-    });
-    if (import)
-      ghosted.reinit(partitioner);
-    else
-      ghosted.reinit(0);
+        "DistributedRows::reinit: the rows' arrays do not match the owned "
+        "rows");
+    fill(
+      rows,
+      owned_columns,
+      [&](const unsigned int k, const auto &f) {
+        for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+          f(columns[e], values[e]);
+      },
+      comm);
   }
 
 
@@ -106,6 +95,8 @@ namespace Fidus
     communicator = other.communicator;
     owned_rows   = other.owned_rows;
     first        = other.first;
+    column_first = other.column_first;
+    column_end   = other.column_end;
     square       = other.square;
     partitioner  = other.partitioner;
     import       = other.import;
@@ -137,8 +128,7 @@ namespace Fidus
   void
   DistributedRows<Number>::vmult(VectorType &dst, const VectorType &src) const
   {
-    dst = Number();
-    vmult_add(dst, src);
+    multiply(dst, src, false);
   }
 
 
@@ -148,20 +138,38 @@ namespace Fidus
   DistributedRows<Number>::vmult_add(VectorType       &dst,
                                      const VectorType &src) const
   {
+    multiply(dst, src, true);
+  }
+
+
+
+  template <typename Number>
+  void
+  DistributedRows<Number>::multiply(VectorType       &dst,
+                                    const VectorType &src,
+                                    const bool        add) const
+  {
+    // Row ranges on the threads as deal.II's SparseMatrix::vmult splits
+    // them (its grain size), each row summed by one thread in storage
+    // order.
     const Number *x = imported(src);
     Number       *y = dst.begin();
-    on_row_ranges(local_rows(),
-                  4,
-                  [&](const unsigned int begin, const unsigned int end) {
-                    for (unsigned int k = begin; k < end; ++k)
-                      {
-                        Number sum = 0;
-                        for (std::size_t e = row_start[k]; e < row_start[k + 1];
-                             ++e)
-                          sum += value[e] * x[column[e]];
-                        y[k] += sum;
-                      }
-                  });
+    parallel::apply_to_subranges(
+      0u,
+      local_rows(),
+      [&](const unsigned int begin, const unsigned int end) {
+        const Number       *v = value.data() + row_start[begin];
+        const unsigned int *c = column.data() + row_start[begin];
+        for (unsigned int k = begin; k < end; ++k)
+          {
+            Number              sum     = add ? y[k] : Number();
+            const Number *const row_end = value.data() + row_start[k + 1];
+            while (v != row_end)
+              sum += *v++ * x[*c++];
+            y[k] = sum;
+          }
+      },
+      internal::SparseMatrixImplementation::minimum_parallel_grain_size);
   }
 
 

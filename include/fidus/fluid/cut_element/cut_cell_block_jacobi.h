@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
+#include <fidus/fluid/cut_element/distributed_rows.h>
+#include <functional>
 #include <vector>
 
 namespace Fidus
@@ -52,10 +54,24 @@ namespace Fidus
                const std::vector<std::vector<unsigned int>> &blocks,
                const std::vector<unsigned char>             &component = {});
 
-    /// dst = P^-1 src, in double or float (the V-cycle in single precision).
-    template <typename Number>
+    /**
+     * The same for this rank's rows of @p a (square, split among the
+     * ranks), with @p blocks of local row numbers: a block holds rows of
+     * this rank only, and the couplings to other ranks' rows are left to
+     * point Jacobi's neighbours, as between blocks. @p component, if not
+     * empty, has one entry per global row of @p a.
+     */
     void
-    vmult(Vector<Number> &dst, const Vector<Number> &src) const;
+    initialize(const DistributedRows<double>                &a,
+               const std::vector<std::vector<unsigned int>> &blocks,
+               const std::vector<unsigned char>             &component = {});
+
+    /// dst = P^-1 src, in double or float (the V-cycle in single
+    /// precision), on serial vectors or on this rank's rows of
+    /// distributed ones.
+    template <typename VectorType>
+    void
+    vmult(VectorType &dst, const VectorType &src) const;
 
     /// Number of blocks.
     unsigned int
@@ -72,6 +88,16 @@ namespace Fidus
     }
 
   private:
+    /// The set-up from the diagonal of A and its rows: @p row(i, f)
+    /// calls f(j, a_ij) for the entries of row i (columns j beyond the
+    /// diagonal's size are ignored).
+    void
+    setup(const std::vector<double> &diagonal,
+          const std::function<
+            void(unsigned int,
+                 const std::function<void(unsigned int, double)> &)> &row,
+          const std::vector<std::vector<unsigned int>>               &blocks);
+
     /// D_F^-1: 1/A_ii on the rows of no block, 0 on the others.
     Vector<double> inverse_diagonal;
     /// The rows of block b: rows[block_start[b]] to rows[block_start[b + 1]].

@@ -4,13 +4,14 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/cut_element/cut_cell_block_jacobi.h>
-#include <fidus/fluid/cut_element/row_pattern.h>
+#include <fidus/fluid/cut_element/distributed_rows.h>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -62,6 +63,14 @@ namespace Fidus
    *   the levels above the coarsest, the prolongations and the smoothing
    *   run in float, since the cycle's products are bound by the memory
    *   traffic of the entries; vmult() takes and returns double vectors.
+   * - **Over MPI ranks.** Every level is a DistributedRows, split among the
+   *   ranks in contiguous ranges of rows: the finest as the velocity block
+   *   handed in, the coarser ones evenly; the Galerkin products are
+   *   distributed_galerkin_product(), a cut-cell block holds the rows of
+   *   one rank, and the coarsest level is gathered and factorised on every
+   *   rank. The level meshes are built whole on every rank (the cut
+   *   element's mesh is). On one rank (initialize() with a SparseMatrix)
+   *   the same code runs on MPI_COMM_SELF with nothing to communicate.
    */
   template <int dim>
   class CutVelocityMultigrid
@@ -129,62 +138,106 @@ namespace Fidus
                const std::vector<unsigned int> &velocity_unknowns,
                const unsigned int               n_rigid = 0);
 
-    /// dst = one V-cycle applied to src (zero initial guess).
+    /**
+     * The same for a block split among the ranks (this rank's rows of it;
+     * @p velocity_unknowns lists every row's system DoF, as the DoF
+     * handler is whole on every rank). Collective on its communicator.
+     */
+    void
+    initialize(const DistributedRows<double>   &matrix,
+               const std::vector<unsigned int> &velocity_unknowns,
+               const unsigned int               n_rigid = 0);
+
+    /// dst = one V-cycle applied to src (zero initial guess), after the
+    /// first initialize().
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
 
+    /// The same on this rank's rows, after the second initialize().
+    void
+    vmult(LinearAlgebra::distributed::Vector<double>       &dst,
+          const LinearAlgebra::distributed::Vector<double> &src) const;
+
   private:
-    using Smoother      = PreconditionChebyshev<SparseMatrix<double>,
-                                           Vector<double>,
+    template <typename Number>
+    using LevelVector   = LinearAlgebra::distributed::Vector<Number>;
+    using Smoother      = PreconditionChebyshev<DistributedRows<double>,
+                                           LevelVector<double>,
                                            CutCellBlockJacobi>;
-    using FloatSmoother = PreconditionChebyshev<SparseMatrix<float>,
-                                                Vector<float>,
+    using FloatSmoother = PreconditionChebyshev<DistributedRows<float>,
+                                                LevelVector<float>,
                                                 CutCellBlockJacobi>;
+
+    /// initialize() for the finest level's rows @p finest
+    /// (SparseMatrixRows or DistributedRows<double>).
+    template <typename Rows>
+    void
+    build(const Rows                      &finest,
+          const std::vector<unsigned int> &velocity_unknowns,
+          const unsigned int               n_rigid);
+
+    /// The level meshes below the finest (by global coarsening), their
+    /// DoFs and constraints; the meshes are held first so that they
+    /// outlive their DoF handlers.
+    struct Levels
+    {
+      std::vector<std::shared_ptr<const Triangulation<dim>>> meshes;
+      std::vector<std::unique_ptr<DoFHandler<dim>>>          dofs;
+      std::vector<AffineConstraints<double>>                 constraints;
+    };
+
+    /// The levels below the finest, and #owned: @p finest_rows on the
+    /// finest, even ranges of the DoFs and the @p n_rigid rigid unknowns
+    /// on the others.
+    Levels
+    make_levels(const unsigned int n_rigid, const IndexSet &finest_rows);
+
+    /// Each of the @p n_rows finest rows' velocity component (255: none),
+    /// by global row.
+    std::vector<unsigned char>
+    finest_components(const std::vector<unsigned int> &velocity_unknowns,
+                      const unsigned int               n_rows) const;
+
+    /// This rank's rows of P_l, from level l + 1 to level @p l.
+    std::unique_ptr<DistributedRows<double>>
+    make_prolongation(const unsigned int               l,
+                      const Levels                    &levels,
+                      const std::vector<int>          &local,
+                      const std::vector<unsigned int> &velocity_unknowns,
+                      const unsigned int               n_rigid) const;
+
     /// Whether a surface passes within half a diagonal of @p cell's centre.
     template <typename Cell>
     bool
     near_surface(const Cell &cell) const;
-    /// The blocks of level @p level's smoother: the unknowns of each of
-    /// its cells near a surface (rows of the level's matrix; @p local maps
-    /// a system DoF to its row on the finest level).
+
+    /// The blocks of a level's smoother: the unknowns of each of its cells
+    /// near a surface that this rank owns, as local rows (@p first: the
+    /// global number of local row 0, @p n_owned: the rows owned; @p local
+    /// maps a system DoF to its row on the finest level).
     std::vector<std::vector<unsigned int>>
     cut_cell_blocks(const DoFHandler<dim>           &level_dofs,
                     const AffineConstraints<double> &level_constraints,
                     const bool                       finest,
-                    const std::vector<int>          &local) const;
+                    const std::vector<int>          &local,
+                    const unsigned int               first,
+                    const unsigned int               n_owned) const;
 
-    /// The smoothers' cut-cell block preconditioners of every level above
-    /// the coarsest (and the double smoothers without single precision),
-    /// once the levels are built; @p dofs and @p constraints are those of
-    /// the levels below the finest, @p local maps a system DoF to its row
-    /// on the finest, read through @p finest_components
-    /// (couples_within_component()).
+    /// The smoothers and the level vectors, once the levels are built.
     void
-    setup_smoothers(const std::vector<std::unique_ptr<DoFHandler<dim>>> &dofs,
-                    const std::vector<AffineConstraints<double>> &constraints,
-                    const std::vector<int>                       &local,
-                    const std::vector<unsigned char> &finest_components);
+    setup_cycle();
 
     /// x = V-cycle on level @p level for the right-hand side @p b.
+    template <typename Number>
     void
-    v_cycle(const unsigned int    level,
-            Vector<double>       &x,
-            const Vector<double> &b) const;
+    v_cycle(const unsigned int         level,
+            LevelVector<Number>       &x,
+            const LevelVector<Number> &b) const;
 
-    /// The same in single precision (Settings::single_precision).
+    /// x = the coarsest level's solution for @p b.
+    template <typename Number>
     void
-    v_cycle_float(const unsigned int   level,
-                  Vector<float>       &x,
-                  const Vector<float> &b) const;
-
-    /// Copies the levels above the coarsest, the prolongations and the
-    /// smoothers to float, and frees the double ones.
-    void
-    setup_single_precision();
-
-    /// The operator of @p level (the finest is the caller's).
-    const SparseMatrix<double> &
-    level_matrix(const unsigned int level) const;
+    coarsest_solve(LevelVector<Number> &x, const LevelVector<Number> &b) const;
 
     const DoFHandler<dim>                     &system;
     const AffineConstraints<double>           &system_constraints;
@@ -192,53 +245,44 @@ namespace Fidus
     const std::vector<unsigned int>            periodic_axes;
     const Settings                             settings;
     std::vector<std::pair<Point<dim>, double>> surfaces;
+    MPI_Comm                                   communicator = MPI_COMM_SELF;
 
-    /// The finest level's operator in double: the caller's block, or
-    /// #separated.
-    const SparseMatrix<double> *finest = nullptr;
     /// With Settings::separate_components: each row's velocity component
-    /// (255: a rigid row), and the pattern of the caller's block without
-    /// its couplings between components. In single precision the finest
-    /// level is read from the caller's block through the components (the
-    /// Galerkin product, the cut-cell blocks) and copied to float on this
-    /// pattern, never held separated in double; in double it is
-    /// #separated.
+    /// (255: a rigid row) on the finest level, by global row.
     std::vector<unsigned char> row_component;
-    RowPattern                 separated_pattern;
-    SparseMatrix<double>       separated;
-    /// Make #row_component and #separated_pattern from @p matrix (rows as
-    /// in initialize()), and #separated in double.
-    void
-    separate_components(const SparseMatrix<double>      &matrix,
-                        const std::vector<unsigned int> &velocity_unknowns);
-    /// @p out (on #separated_pattern) = @p matrix without its couplings
-    /// between components.
-    template <typename Number>
-    void
-    copy_separated(const SparseMatrix<double> &matrix,
-                   SparseMatrix<Number>       &out) const;
-    /// prolongation[l]: level l + 1 to level l.
-    std::vector<std::unique_ptr<SparsityPattern>>      prolongation_pattern;
-    std::vector<std::unique_ptr<SparseMatrix<double>>> prolongation;
-    /// coarse[l - 1]: the operator of level l >= 1.
-    std::vector<std::unique_ptr<RowPattern>>           coarse_pattern;
-    std::vector<std::unique_ptr<SparseMatrix<double>>> coarse;
-    std::vector<std::unique_ptr<Smoother>>             smoother;
+    /// The levels in double: the finest (a copy, only for the double
+    /// V-cycle) and the coarser ones (in single precision freed as soon as
+    /// copied); prolongation[l] from level l + 1 to level l.
+    std::unique_ptr<DistributedRows<double>>              finest_double;
+    std::vector<std::unique_ptr<DistributedRows<double>>> coarse, prolongation;
     /// The smoothers' preconditioners, shared by the float smoothers.
     std::vector<std::shared_ptr<CutCellBlockJacobi>> block_jacobi;
+    std::vector<std::unique_ptr<Smoother>>           smoother;
     /// With Settings::single_precision: the levels above the coarsest, the
-    /// prolongations, the smoothers and the work vectors in float, and
-    /// the coarsest level's vectors in double.
-    std::vector<std::unique_ptr<SparseMatrix<float>>> level_float,
+    /// prolongations and the smoothers in float.
+    std::vector<std::unique_ptr<DistributedRows<float>>> level_float,
       prolongation_float;
     std::vector<std::unique_ptr<FloatSmoother>> smoother_float;
-    mutable std::vector<Vector<float>>          residual_f, rhs_f, solution_f;
-    mutable Vector<float>                       src_f, dst_f;
-    mutable Vector<double>                      coarse_x, coarse_b;
-    SparseDirectUMFPACK                         coarsest;
+    /// The coarsest level, whole on every rank, factorised.
+    SparseMatrix<double> coarsest_matrix;
+    SparsityPattern      coarsest_pattern;
+    SparseDirectUMFPACK  coarsest;
+    /// The rows each rank owns on each level.
+    std::vector<IndexSet> owned;
     /// Work vectors per level: residual, restricted right-hand side,
-    /// coarse correction.
-    mutable std::vector<Vector<double>> residual, level_rhs, level_solution;
+    /// coarse correction; the finest level's in and out; the coarsest
+    /// level's whole right-hand side and solution.
+    mutable std::vector<LevelVector<float>>  residual_f, rhs_f, solution_f;
+    mutable std::vector<LevelVector<double>> residual, level_rhs,
+      level_solution;
+    mutable LevelVector<float>  src_f, dst_f;
+    mutable LevelVector<double> src_d, dst_d;
+    mutable Vector<double>      coarse_x, coarse_b;
+
+    /// The operator of @p level in double below the finest (or the
+    /// finest's copy for the double V-cycle).
+    const DistributedRows<double> &
+    level_matrix(const unsigned int level) const;
   };
 } // namespace Fidus
 

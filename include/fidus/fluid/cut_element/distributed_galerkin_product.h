@@ -27,10 +27,14 @@ namespace Fidus
    * With @p component (one entry per global row of @p a, on every rank),
    * A is read without its entries (i, j) whose rows hold different
    * components, as galerkin_product() reads it. Collective.
+   *
+   * @p a is a DistributedRows<double> or a SparseMatrixRows (a serial
+   * matrix on MPI_COMM_SELF, read in place).
    */
+  template <typename RowsOfA>
   void
   distributed_galerkin_product(
-    const DistributedRows<double>    &a,
+    const RowsOfA                    &a,
     const DistributedRows<double>    &p,
     const IndexSet                   &coarse_owned,
     DistributedRows<double>          &c,

@@ -1,12 +1,16 @@
 #ifndef fidus_fluid_cut_element_distributed_rows_h
 #define fidus_fluid_cut_element_distributed_rows_h
 
+#include <algorithm>
 #include <cstddef>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/partitioner.h>
+#include <deal.II/base/subscriptor.h>
 #include <deal.II/lac/la_parallel_vector.h>
+#include <fidus/fluid/cut_element/row_ranges.h>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace Fidus
@@ -32,10 +36,11 @@ namespace Fidus
    *
    * A square matrix (the row and the column space the same, split alike)
    * keeps each row's diagonal first, as deal.II's SparseMatrix does, so
-   * that its diagonal is read in one step.
+   * that its diagonal is read in one step. (A Subscriptor, as deal.II's
+   * Chebyshev smoother holds its matrix through a SmartPointer.)
    */
   template <typename Number>
-  class DistributedRows
+  class DistributedRows : public Subscriptor
   {
   public:
     using VectorType = LinearAlgebra::distributed::Vector<Number>;
@@ -57,6 +62,22 @@ namespace Fidus
            const std::vector<types::global_dof_index> &columns,
            const std::vector<double>                  &values,
            const MPI_Comm                              comm);
+
+    /**
+     * reinit() from a function instead of arrays: @p row(k, f) calls
+     * f(global column, value) for each entry of local row k (each column
+     * at most once, in the order they are to be stored). It is called
+     * twice per row, from the threads (MultithreadInfo::n_threads()), and
+     * nothing but the matrix is allocated: the multigrid's finest level is
+     * copied from the velocity block this way, in float, without a double
+     * copy in between.
+     */
+    template <typename Row>
+    void
+    fill(const IndexSet &owned_rows,
+         const IndexSet &owned_columns,
+         const Row      &row,
+         const MPI_Comm  comm);
 
     /// The same structure as @p other, its values converted to Number.
     template <typename OtherNumber>
@@ -117,6 +138,13 @@ namespace Fidus
         f(column[e], value[e]);
     }
 
+    /// The number of entries of local row @p k.
+    unsigned int
+    row_length(const unsigned int k) const
+    {
+      return row_start[k + 1] - row_start[k];
+    }
+
     /// The diagonal entry of local row @p k of a square matrix.
     Number &
     diag_element(const unsigned int k)
@@ -157,6 +185,28 @@ namespace Fidus
     memory_consumption() const;
 
   private:
+    /// The part of fill() and reinit() that does not depend on the rows:
+    /// the ranges, the column partitioner from this rank's @p ghosts
+    /// (sorted, distinct) and the import buffer. Collective.
+    void
+    setup_columns(const IndexSet                             &rows,
+                  const IndexSet                             &owned_columns,
+                  const std::vector<types::global_dof_index> &ghosts,
+                  const MPI_Comm                              comm);
+
+    /// The local number of the global column @p g.
+    unsigned int
+    local_column(const types::global_dof_index g) const
+    {
+      return g >= column_first && g < column_end ?
+               g - column_first :
+               partitioner->global_to_local(g);
+    }
+
+    /// dst = A src, or dst += A src with @p add.
+    void
+    multiply(VectorType &dst, const VectorType &src, const bool add) const;
+
     /// The values src imports (owned ones first, then the ghost columns);
     /// @p src's own array if nothing is imported.
     const Number *
@@ -165,10 +215,10 @@ namespace Fidus
     template <typename>
     friend class DistributedRows;
 
-    MPI_Comm                                           communicator;
-    IndexSet                                           owned_rows;
-    types::global_dof_index                            first  = 0;
-    bool                                               square = false;
+    MPI_Comm                communicator;
+    IndexSet                owned_rows;
+    types::global_dof_index first = 0, column_first = 0, column_end = 0;
+    bool                    square = false;
     std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
     /// Whether some rank has ghost columns (then every product imports).
     bool                      import = false;
@@ -178,6 +228,75 @@ namespace Fidus
     /// The import buffer, over the column partitioner.
     mutable VectorType ghosted;
   };
+
+  template <typename Number>
+  template <typename Row>
+  void
+  DistributedRows<Number>::fill(const IndexSet &rows,
+                                const IndexSet &owned_columns,
+                                const Row      &row,
+                                const MPI_Comm  comm)
+  {
+    const unsigned int            n = rows.n_elements();
+    const types::global_dof_index row_first =
+      n > 0 ? rows.nth_index_in_set(0) : 0;
+    const types::global_dof_index col_first =
+      owned_columns.n_elements() > 0 ? owned_columns.nth_index_in_set(0) : 0;
+    const types::global_dof_index col_end =
+      col_first + owned_columns.n_elements();
+    // First pass: each row's length and whether it holds its diagonal;
+    // the ghost columns.
+    std::vector<unsigned int>            length(n);
+    std::vector<unsigned char>           has_diagonal(n, 0);
+    std::vector<types::global_dof_index> ghosts;
+    std::mutex                           ghosts_mutex;
+    on_row_ranges(n, 4, [&](const unsigned int begin, const unsigned int end) {
+      std::vector<types::global_dof_index> mine;
+      for (unsigned int k = begin; k < end; ++k)
+        row(k, [&](const types::global_dof_index g, const double) {
+          ++length[k];
+          if (g == row_first + k)
+            has_diagonal[k] = 1;
+          if (g < col_first || g >= col_end)
+            mine.push_back(g);
+        });
+      std::sort(mine.begin(), mine.end());
+      mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+      std::lock_guard<std::mutex> lock(ghosts_mutex);
+      ghosts.insert(ghosts.end(), mine.begin(), mine.end());
+    });
+    std::sort(ghosts.begin(), ghosts.end());
+    ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+    setup_columns(rows, owned_columns, ghosts, comm);
+
+    row_start.assign(n + 1, 0);
+    for (unsigned int k = 0; k < n; ++k)
+      row_start[k + 1] =
+        row_start[k] + length[k] + (square && !has_diagonal[k] ? 1 : 0);
+    std::vector<unsigned int>().swap(length);
+    column.resize(row_start[n]);
+    value.assign(row_start[n], Number());
+    on_row_ranges(n, 4, [&](const unsigned int begin, const unsigned int end) {
+      for (unsigned int k = begin; k < end; ++k)
+        {
+          std::size_t to = row_start[k];
+          if (square)
+            column[to++] = k; // the diagonal first
+          row(k, [&](const types::global_dof_index g, const double v) {
+            if (square && g == first + k)
+              value[row_start[k]] = v;
+            else
+              {
+                column[to] = local_column(g);
+                value[to]  = v;
+                ++to;
+              }
+          });
+        }
+    });
+  }
+
+
 
   /**
    * The contiguous range of @p n_local indices this rank owns when the
