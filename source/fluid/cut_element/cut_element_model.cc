@@ -46,8 +46,8 @@ namespace Fidus
           "factorises its system over the ranks (the iterative solver runs "
           "on one rank); in 3D that is several times slower and dearer "
           "than one rank with the machine's cores as threads (one sphere "
-          "at a/h = 3.2 on a 2-core machine: 35 s and 3.3 GB per rank on 2 "
-          "ranks against 7 s and 1.2 GB on one, per solve; "
+          "at a/h = 3.2 on a 2-core machine: 33 s and 3.4 GB per rank on 2 "
+          "ranks against 4.3 s and 1.1 GB on one, per solve; "
           "doc/theory/cut_element.md, 'Solvers'): run fidus on one "
           "rank, or set 'direct' to keep the factorisation without this "
           "warning",
