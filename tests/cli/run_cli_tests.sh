@@ -282,19 +282,6 @@ if [ $status -eq 0 ] && [ $steps -eq 12 ] && [ $full_ok = 1 ] \
    && grep -q "^fidus: warning: 12 warnings (rigidity not reached) in this run, 10 of them written above; the largest value was $worst$" stderr.txt; then
   passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: repeated warnings on 2 ranks (status $status, steps $steps, expected worst $worst)"; cat stderr.txt; fi
 
-# The cut element's iterative solver runs on one rank: on 2 ranks the run
-# is refused with one message, before anything is written (its direct
-# solver runs on any number: cli.cut_ranks).
-{ base; cut_fluid '  set Cut linear solver = iterative'; } > cut.prm
-rm -rf "$work/out"
-OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
-  mpirun -np 2 "$fidus" cut.prm > /dev/null 2> stderr.txt
-status=$?
-# (mpirun adds its own lines about the exit status; fidus writes one.)
-if [ $status -ne 0 ] && [ ! -e "$work/out" ] && [ "$(grep -c '^fidus:' stderr.txt)" -eq 1 ] \
-   && grep -q "Fluid/Cut linear solver' is 'iterative' on 2 MPI ranks; allowed: 'direct' or 'auto' on more than one rank, or 'iterative' on one" stderr.txt; then
-  passes=$((passes + 1)); else failures=$((failures + 1)); echo "FAILED: the cut element's iterative solver on 2 ranks (status $status)"; cat stderr.txt; fi
-
 # The cut element estimates each solve's memory from its unknowns before
 # building its sparsity pattern: under a budget smaller than what the process already
 # holds, the run stops at its first solve with one message naming the

@@ -32,25 +32,26 @@ namespace Fidus
     for (unsigned int d = 0; d < dim; ++d)
       box_cells.push_back(
         static_cast<unsigned int>(std::lround((box.hi[d] - box.lo[d]) / unit)));
-    // More than one rank with the iterative solver is refused by
-    // CutElementParameters::check(). 'auto' factorises on more than one
-    // rank, which in 3D is the slower and dearer choice by far: said once,
-    // since the run does what was asked.
+    // On more than one rank the iterative solve splits the velocity block
+    // and its multigrid among the ranks, but every rank builds the whole
+    // mesh and assembles the whole system: on one machine that is slower
+    // and dearer than one rank with the machine's cores as threads. Said
+    // once when 'auto' chose it (a solver set by hand is the user's call).
     const unsigned int ranks  = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
     const std::string &solver = prm.cut_element.linear_solver;
     if (dim == 3 && ranks > 1 && (solver == "auto" || solver == "automatic"))
       warnings.warn(
         "cut element: 3D on many ranks",
         "the cut element runs on " + std::to_string(ranks) +
-          " MPI ranks with 'Fluid/Cut linear solver = auto', which then "
-          "factorises its system over the ranks (the iterative solver runs "
-          "on one rank); in 3D that is several times slower and dearer "
-          "than one rank with the machine's cores as threads (one sphere "
-          "at a/h = 3.2 on a 2-core machine: 33 s and 3.4 GB per rank on 2 "
-          "ranks against 4.3 s and 1.1 GB on one, per solve; "
-          "doc/theory/cut_element.md, 'Solvers'): run fidus on one "
-          "rank, or set 'direct' to keep the factorisation without this "
-          "warning",
+          " MPI ranks: its iterative solve splits the velocity block and "
+          "its multigrid among them, but every rank builds the whole mesh "
+          "and assembles the whole system, so on one machine one rank with "
+          "the machine's cores as threads is faster and holds less (one "
+          "sphere at a/h = 3.2 on a 2-core machine: 5.2 s and 1.05 GB per "
+          "rank on 2 ranks against 4.3 s and 1.1 GB on one, per solve; "
+          "doc/theory/cut_element.md, 'Solvers'): run fidus on one rank, "
+          "or set 'Fluid/Cut linear solver' by hand to keep the ranks "
+          "without this warning",
         0,
         ranks);
   }

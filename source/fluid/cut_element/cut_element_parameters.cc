@@ -17,17 +17,6 @@ namespace Fidus
 {
   using namespace dealii;
 
-  namespace
-  {
-    /// The run's MPI ranks (1 where MPI was not started).
-    unsigned int
-    mpi_ranks()
-    {
-      int started = 0;
-      MPI_Initialized(&started);
-      return started ? Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) : 1;
-    }
-  } // namespace
 
   void
   CutElementParameters::declare(ParameterHandler &prm)
@@ -40,9 +29,11 @@ namespace Fidus
       "With 'cut finite element': 'direct' factorises the symmetric "
       "system (MUMPS, LDL^T) over all the MPI ranks; 'iterative' runs "
       "FGMRES with a block preconditioner (a geometric multigrid V-cycle "
-      "for the velocities and rigid motions) to 'Cut linear tolerance', "
-      "on one rank only; 'auto' (or 'automatic', its former "
-      "name) is iterative in 3D above 15000 unknowns on one rank, where "
+      "for the velocities and rigid motions) to 'Cut linear tolerance' "
+      "(on more ranks the velocity block and its multigrid are split "
+      "among them, the rest runs on every rank); 'auto' (or 'automatic', "
+      "its former "
+      "name) is iterative in 3D above 15000 unknowns, where "
       "the factorisation is slower and takes more memory, and direct "
       "otherwise (doc/theory/cut_element.md, 'Solvers').");
     prm.declare_entry(
@@ -195,8 +186,8 @@ namespace Fidus
   bool
   CutElementParameters::direct_solver(const unsigned int dimension) const
   {
-    return linear_solver == "direct" || ((dimension == 2 || mpi_ranks() > 1) &&
-                                         linear_solver != "iterative");
+    return linear_solver == "direct" ||
+           (dimension == 2 && linear_solver != "iterative");
   }
 
 
@@ -257,7 +248,6 @@ namespace Fidus
       }
     // The direct solver has no start and no tolerance (it refines to
     // round-off).
-    const bool                 many_ranks = mpi_ranks() > 1;
     const CutElementParameters defaults;
     std::ostringstream         tolerance;
     tolerance << linear_tolerance;
@@ -272,19 +262,9 @@ namespace Fidus
         throw InputError(
           "entry 'Fluid/" + entry + "' has the value " + value +
           " with the direct solver ('Fluid/Cut linear solver = " +
-          linear_solver + "' " +
-          (many_ranks ? std::string("on more than one rank") :
-                        "in " + std::to_string(scene.dimension) + "D") +
-          "), which does not read it; allowed: its default, or "
-          "'Fluid/Cut linear solver = iterative' on one rank");
-    // Every rank builds the whole cut mesh and the direct solver
-    // factorises over them; the iterative solver runs on one rank.
-    if (many_ranks && linear_solver == "iterative")
-      throw InputError("entry 'Fluid/Cut linear solver' is 'iterative' on " +
-                       std::to_string(mpi_ranks()) +
-                       " MPI ranks; allowed: 'direct' or 'auto' on more than "
-                       "one rank, or 'iterative' on one (the cut element's "
-                       "iterative solver runs on one rank)");
+          linear_solver + "' in " + std::to_string(scene.dimension) +
+          "D), which does not read it; allowed: its default, or "
+          "'Fluid/Cut linear solver = iterative'");
     if (!scene.lubrication.enabled)
       return;
     // The cut element solves the bonds with the flow at the start's gaps.

@@ -557,7 +557,9 @@ namespace Fidus
     // motions about the box's centre as near-null space: the viscous
     // operator does not see them, and translations alone leave the coarse
     // spaces without rotations.
-    if (multigrid)
+    if (multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1)
+      split_velocity_block(layout.communicator);
+    else if (multigrid)
       multigrid->initialize(velocity_matrix, velocity, n_v);
     else
       setup_velocity_amg(layout);
@@ -601,7 +603,7 @@ namespace Fidus
           x_k[n_u + k] = src[rigid[k]];
         for (unsigned int k = 0; k < pressure.size(); ++k)
           x_p[k] = src[pressure[k]];
-        velocity_matrix.vmult(y_k, x_k);
+        k_vmult(y_k, x_k);
         coupling.vmult_add(y_k, x_p);
         divergence.vmult(y_p, x_k);
         pressure_block.vmult_add(y_p, x_p);
@@ -639,7 +641,7 @@ namespace Fidus
         // K^-1 by one V-cycle on K.
         for (unsigned int k = 0; k < rigid.size(); ++k)
           r_u[n_u + k] = src[rigid[k]] - coupling_product[n_u + k];
-        multigrid->vmult(y_u, r_u);
+        cycle(y_u, r_u);
         for (unsigned int k = 0; k < velocity.size(); ++k)
           dst[velocity[k]] = y_u[k];
         for (unsigned int k = 0; k < rigid.size(); ++k)
@@ -661,6 +663,99 @@ namespace Fidus
       dst[rigid[k]] = z_v[k];
     for (unsigned int k = 0; k < pressure.size(); ++k)
       dst[pressure[k]] = z_p[k];
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_velocity_block(const MPI_Comm communicator)
+  {
+    // Even ranges of K's rows; the rigid rows, which couple to every cut
+    // cell of their particle, go with the last range.
+    const unsigned int n     = velocity_matrix.m();
+    const unsigned int ranks = Utilities::MPI::n_mpi_processes(communicator);
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(communicator);
+    const IndexSet     owned =
+      contiguous_range(std::size_t(n) * (rank + 1) / ranks -
+                         std::size_t(n) * rank / ranks,
+                       communicator);
+    const unsigned int first =
+      owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
+    k_rows = std::make_unique<DistributedRows<double>>();
+    k_rows->fill(
+      owned,
+      owned,
+      [&](const unsigned int k, const auto &f) {
+        for (auto it  = velocity_matrix.begin(first + k),
+                  end = velocity_matrix.end(first + k);
+             it != end;
+             ++it)
+          f(it->column(), it->value());
+      },
+      communicator);
+    // Every rank holds the whole block until here: now only its rows.
+    velocity_matrix.clear();
+    blocks->k_pattern.reinit(0, 0, 0);
+    k_in.reinit(owned, communicator);
+    k_out.reinit(owned, communicator);
+    multigrid->initialize(*k_rows, velocity, rigid.size());
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::gather(
+    const LinearAlgebra::distributed::Vector<double> &part,
+    Vector<double>                                   &whole) const
+  {
+    whole                    = 0.;
+    const IndexSet    &owned = part.locally_owned_elements();
+    const unsigned int first =
+      owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
+    std::copy(part.begin(), part.end(), whole.begin() + first);
+    Utilities::MPI::sum(whole, part.get_mpi_communicator(), whole);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::k_vmult(Vector<double>       &dst,
+                                     const Vector<double> &src) const
+  {
+    if (!k_rows)
+      {
+        velocity_matrix.vmult(dst, src);
+        return;
+      }
+    const unsigned int first = k_rows->first_row();
+    std::copy(src.begin() + first,
+              src.begin() + first + k_in.locally_owned_size(),
+              k_in.begin());
+    k_rows->vmult(k_out, k_in);
+    gather(k_out, dst);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::cycle(Vector<double>       &dst,
+                                   const Vector<double> &src) const
+  {
+    if (!k_rows)
+      {
+        multigrid->vmult(dst, src);
+        return;
+      }
+    const unsigned int first = k_rows->first_row();
+    std::copy(src.begin() + first,
+              src.begin() + first + k_in.locally_owned_size(),
+              k_in.begin());
+    multigrid->vmult(k_out, k_in);
+    gather(k_out, dst);
   }
 
 

@@ -59,10 +59,11 @@ namespace Fidus
       refuse("a ghost penalty",
              std::min(s.ghost_velocity, s.ghost_pressure),
              ">= 0 (0 leaves small cut pieces unstable)");
-    if (n_ranks > 1 && s.linear_solver == LinearSolver::iterative)
-      refuse("the number of ranks of the iterative solver",
+    if (n_ranks > 1 && s.linear_solver == LinearSolver::iterative &&
+        s.velocity_preconditioner != VelocityPreconditioner::multigrid)
+      refuse("the number of ranks of the iterative solver with the AMG",
              n_ranks,
-             "1 (on more ranks the direct solver factorises over them)");
+             "1 (over ranks the iterative solver splits the multigrid)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
     if (!s.box_cells.empty() && s.box_cells.size() != dim)
@@ -242,7 +243,7 @@ namespace Fidus
     // costs next to nothing and cannot stall.
     return s.linear_solver == LinearSolver::iterative ||
            (s.linear_solver == LinearSolver::automatic && dim == 3 &&
-            n_ranks == 1 && n_total > 15000);
+            n_total > 15000);
   }
 
   template <int dim>
@@ -275,9 +276,11 @@ namespace Fidus
     const double units    = with_pattern ? double(result.n_entries) : n_total;
     // On more ranks, about half of the direct solver's peak is held by
     // every rank (the mesh, the system and its copies) and the factor,
-    // the other half, is shared (2D and 3D, 1 to 3 ranks: 0.43-0.56).
+    // the other half, is shared (2D and 3D, 1 to 3 ranks: 0.43-0.56). The
+    // iterative solver's ranks each assemble the whole blocks before they
+    // split the velocity block: its peak is counted on every rank.
     const double needed =
-      per_unit * units * (n_ranks == 1 ? 1. : 0.5 + 0.5 / n_ranks);
+      per_unit * units * (n_ranks == 1 || iterate ? 1. : 0.5 + 0.5 / n_ranks);
     const MemoryBudget budget(s.memory_limit, s.communicator);
     // The least any rank has: the ranks decide together.
     const double free =
@@ -576,6 +579,7 @@ namespace Fidus
     layout.support_point.resize(n_total);
     layout.component.assign(n_total, 0);
     layout.pressure_mean = scaled_mean;
+    layout.communicator  = s.communicator;
     for (unsigned int i = 0; i < n_fluid; ++i)
       {
         layout.kind[i]        = is_pressure[i] ? 1 : 0;

@@ -435,8 +435,14 @@ namespace Fidus
     // Every rank built the same patterns, so the shares add entry by entry.
     if (n_ranks == 1)
       return;
-    Assert(!iterative, ExcInternalError());
-    Utilities::MPI::sum(matrix, s.communicator, matrix);
+    if (blocks)
+      for (SparseMatrix<double> *block :
+           {&blocks->k, &blocks->bt, &blocks->b, &blocks->p})
+        Utilities::MPI::sum(*block, s.communicator, *block);
+    else
+      Utilities::MPI::sum(matrix, s.communicator, matrix);
+    if (iterative)
+      Utilities::MPI::sum(pressure_mass, s.communicator, pressure_mass);
     Utilities::MPI::sum(rhs, s.communicator, rhs);
     Utilities::MPI::sum(pressure_mean, s.communicator, pressure_mean);
     if (periodic)

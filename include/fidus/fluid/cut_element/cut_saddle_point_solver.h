@@ -4,6 +4,7 @@
 #include <Epetra_MultiVector.h>
 #include <deal.II/base/point.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
@@ -12,6 +13,7 @@
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/cut_element/cut_system_blocks.h>
 #include <fidus/fluid/cut_element/cut_velocity_multigrid.h>
+#include <fidus/fluid/cut_element/distributed_rows.h>
 #include <fidus/fluid/cut_element/row_pattern.h>
 #include <functional>
 #include <memory>
@@ -86,6 +88,12 @@ namespace Fidus
       /// complement's preconditioner, S^-1 ~ (M + C)^-1 + w L_gap^-1 (see
       /// build_gap_laplacian()); 0: the pressure mass alone.
       double gap_laplacian = 0.;
+      /// The ranks that share the solve, each holding the whole system:
+      /// with the multigrid, K and the multigrid's levels are split among
+      /// them by rows (each rank keeps its own), and every product with
+      /// them is summed over the ranks; FGMRES, the pressure side and the
+      /// couplings run on every rank alike.
+      MPI_Comm communicator = MPI_COMM_SELF;
     };
 
     /// The cost of one solve.
@@ -223,6 +231,25 @@ namespace Fidus
      */
     void
     build_gap_laplacian(const Layout &layout);
+
+    /// With the multigrid on more than one rank: K's rows split among
+    /// the ranks (K itself is freed once they are copied) and the vectors
+    /// on those rows; k_x, k_y the whole vectors they are gathered into.
+    void
+    split_velocity_block(const MPI_Comm communicator);
+    /// dst = K src (whole vectors), from the ranks' rows of K.
+    void
+    k_vmult(Vector<double> &dst, const Vector<double> &src) const;
+    /// dst = one V-cycle on src (whole vectors), on the ranks' rows.
+    void
+    cycle(Vector<double> &dst, const Vector<double> &src) const;
+    /// The whole vector @p whole from this rank's rows @p part, summed over
+    /// the ranks.
+    void
+    gather(const LinearAlgebra::distributed::Vector<double> &part,
+           Vector<double>                                   &whole) const;
+    std::unique_ptr<DistributedRows<double>>           k_rows;
+    mutable LinearAlgebra::distributed::Vector<double> k_in, k_out;
 
     /// The system; nullptr when it came as blocks, and not read after the
     /// constructor with the multigrid.
