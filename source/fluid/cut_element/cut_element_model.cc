@@ -34,7 +34,7 @@ namespace Fidus
         static_cast<unsigned int>(std::lround((box.hi[d] - box.lo[d]) / unit)));
     // On more than one rank the iterative solve splits the velocity block
     // and its multigrid among the ranks, but every rank builds the whole
-    // mesh and assembles the whole system: on one machine that is slower
+    // mesh and holds the rest of the system: on one machine that is slower
     // and dearer than one rank with the machine's cores as threads. Said
     // once when 'auto' chose it (a solver set by hand is the user's call).
     const unsigned int ranks  = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
@@ -45,13 +45,13 @@ namespace Fidus
         "the cut element runs on " + std::to_string(ranks) +
           " MPI ranks: its iterative solve splits the velocity block and "
           "its multigrid among them, but every rank builds the whole mesh "
-          "and assembles the whole system, so on one machine one rank with "
-          "the machine's cores as threads is faster and holds less (one "
-          "sphere at a/h = 3.2 on a 2-core machine: 5.2 s and 1.05 GB per "
-          "rank on 2 ranks against 4.3 s and 1.1 GB on one, per solve; "
-          "doc/theory/cut_element.md, 'Solvers'): run fidus on one rank, "
-          "or set 'Fluid/Cut linear solver' by hand to keep the ranks "
-          "without this warning",
+          "and holds the rest of the system, so on one machine one rank "
+          "with the machine's cores as threads is faster and holds less in "
+          "all (one sphere at a/h = 3.2 on a 2-core machine: 5.1 s and 0.83 "
+          "GB per rank on 2 ranks against 4.3 s and 1.07 GB on one, per "
+          "solve; doc/theory/cut_element.md, 'Solvers'): run fidus on one "
+          "rank, or set 'Fluid/Cut linear solver' by hand to keep the "
+          "ranks without this warning",
         0,
         ranks);
   }

@@ -436,7 +436,7 @@ namespace Fidus
     for (unsigned int k = 0; k < n_u; ++k)
       {
         gap_column(k);
-        const double d = velocity_matrix.diag_element(k);
+        const double d = k_diagonal[k];
         for (const auto &i : column)
           for (const auto &j : column)
             gap_matrix.add(i.first, j.first, i.second * j.second / d);
@@ -544,6 +544,15 @@ namespace Fidus
       last = now;
       return spent;
     };
+    // K's diagonal, which the gap Laplacian reads: with the split every
+    // rank holds its own velocity rows only.
+    k_diagonal.reinit(velocity_matrix.m());
+    const bool split = Utilities::MPI::n_mpi_processes(layout.communicator) > 1;
+    for (unsigned int k = 0; k < velocity_matrix.m(); ++k)
+      if (!split || (k >= layout.k_first && k < layout.k_end))
+        k_diagonal[k] = velocity_matrix.diag_element(k);
+    if (split)
+      Utilities::MPI::sum(k_diagonal, layout.communicator, k_diagonal);
     build_pressure_schur(pressure_mass, layout);
     pressure_jacobi.initialize(pressure_schur);
     build_gap_laplacian(layout);
@@ -558,7 +567,7 @@ namespace Fidus
     // operator does not see them, and translations alone leave the coarse
     // spaces without rotations.
     if (multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1)
-      split_velocity_block(layout.communicator);
+      split_velocity_block(layout);
     else if (multigrid)
       multigrid->initialize(velocity_matrix, velocity, n_v);
     else
@@ -669,17 +678,16 @@ namespace Fidus
 
   template <int dim>
   void
-  CutSaddlePointSolver<dim>::split_velocity_block(const MPI_Comm communicator)
+  CutSaddlePointSolver<dim>::split_velocity_block(const Layout &layout)
   {
-    // Even ranges of K's rows; the rigid rows, which couple to every cut
-    // cell of their particle, go with the last range.
-    const unsigned int n     = velocity_matrix.m();
-    const unsigned int ranks = Utilities::MPI::n_mpi_processes(communicator);
-    const unsigned int rank  = Utilities::MPI::this_mpi_process(communicator);
-    const IndexSet     owned =
-      contiguous_range(std::size_t(n) * (rank + 1) / ranks -
-                         std::size_t(n) * rank / ranks,
-                       communicator);
+    // The rows this rank's K holds (the rigid rows, whole on every rank,
+    // go with the last range).
+    const MPI_Comm communicator = layout.communicator;
+    const IndexSet owned =
+      contiguous_range(layout.k_end - layout.k_first, communicator);
+    AssertThrow(owned.n_elements() == 0 ||
+                  owned.nth_index_in_set(0) == layout.k_first,
+                ExcMessage("The ranks' rows of K are not consecutive."));
     const unsigned int first =
       owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
     k_rows = std::make_unique<DistributedRows<double>>();

@@ -369,8 +369,9 @@ namespace Fidus
     struct CellCopy
     {
       explicit CellCopy(const CutStokesSolve &solve);
-      /// Whether the cell has fluid (and so anything to add).
-      bool                                 fluid = false;
+      /// Whether the cell has fluid (and so anything to add), and whether
+      /// it is in this rank's share (else it only writes K's held rows).
+      bool                                 fluid = false, share = true;
       FullMatrix<double>                   local, local_pressure;
       std::vector<types::global_dof_index> ext_dofs;
     };
@@ -403,6 +404,9 @@ namespace Fidus
     /// DoFs.
     struct FaceCopy
     {
+      /// Whether the face is in this rank's share (else it only writes
+      /// K's held rows).
+      bool                                 share = true;
       FullMatrix<double>                   face_matrix;
       std::vector<types::global_dof_index> face_dofs;
     };
@@ -443,7 +447,24 @@ namespace Fidus
     void
     distribute(const FullMatrix<double>                   &local,
                const FullMatrix<double>                   &local_pressure,
-               const std::vector<types::global_dof_index> &dofs);
+               const std::vector<types::global_dof_index> &dofs,
+               const bool                                  share = true);
+
+    /// With the split K (#split_rows): whether adding a cell or face with
+    /// the unknowns @p dofs writes a velocity row of K this rank holds.
+    bool
+    writes_held_rows(const std::vector<types::global_dof_index> &dofs) const;
+
+    /// With the split K: @p local's entries in the velocity rows of K this
+    /// rank holds (a cell outside this rank's share that writes them).
+    void
+    add_to_held_rows(const FullMatrix<double>                   &local,
+                     const std::vector<types::global_dof_index> &dofs);
+
+    /// With the split K: the ranks' velocity rows' diagonal, gathered into
+    /// #held_diagonal after the sum.
+    void
+    gather_velocity_diagonal();
 
     /// Add @p local on the unknowns @p dofs to the system through the
     /// constraints (into its blocks, or into the one matrix), and what its
@@ -457,6 +478,8 @@ namespace Fidus
     double
     system_diagonal(const unsigned int i) const
     {
+      if (split_rows && blocks->kind[i] == 0)
+        return velocity_diagonal[i];
       return blocks ? blocks->diag_element(i) : matrix.diag_element(i);
     }
 
@@ -590,6 +613,13 @@ namespace Fidus
     std::vector<bool>                              wall_rows;
     /// Whether the system is solved iteratively.
     bool iterative = false;
+    /// On more than one rank with the multigrid: K's velocity rows split
+    /// among the ranks, each holding the range [k_first, k_end) of K's
+    /// rows (CutSystemBlocks::reinit()); and the velocity rows' diagonal,
+    /// gathered from the ranks (by system index).
+    bool           split_rows = false;
+    unsigned int   k_first = 0, k_end = 0;
+    Vector<double> velocity_diagonal;
     /// The pressure mass matrix over the fluid (iterative solver only).
     RowPattern           mass_sparsity;
     SparseMatrix<double> pressure_mass;

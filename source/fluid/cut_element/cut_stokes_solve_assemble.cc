@@ -275,7 +275,7 @@ namespace Fidus
   CutStokesSolve<dim>::distribute_cell(const CellCopy &copy)
   {
     if (copy.fluid)
-      distribute(copy.local, copy.local_pressure, copy.ext_dofs);
+      distribute(copy.local, copy.local_pressure, copy.ext_dofs, copy.share);
   }
 
   template <int dim>
@@ -283,8 +283,14 @@ namespace Fidus
   CutStokesSolve<dim>::distribute(
     const FullMatrix<double>                   &local,
     const FullMatrix<double>                   &local_pressure,
-    const std::vector<types::global_dof_index> &dofs)
+    const std::vector<types::global_dof_index> &dofs,
+    const bool                                  share)
   {
+    if (!share)
+      {
+        add_to_held_rows(local, dofs);
+        return;
+      }
     // The cell's pressures and its part of the constant's mass: local, as
     // full cells are added from several threads at once.
     const unsigned int                   n_p = pressure_shapes.size();
@@ -316,7 +322,16 @@ namespace Fidus
     const Vector<double>                       &local_rhs,
     const std::vector<types::global_dof_index> &dofs)
   {
-    if (blocks)
+    if (split_rows)
+      {
+        CutSystemBlocks::Part part(*blocks, true);
+        constraints.distribute_local_to_global(local,
+                                               local_rhs,
+                                               dofs,
+                                               part,
+                                               rhs);
+      }
+    else if (blocks)
       constraints.distribute_local_to_global(local,
                                              local_rhs,
                                              dofs,
@@ -328,6 +343,48 @@ namespace Fidus
                                              dofs,
                                              matrix,
                                              rhs);
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_to_held_rows(
+    const FullMatrix<double>                   &local,
+    const std::vector<types::global_dof_index> &dofs)
+  {
+    // The matrix alone: what the cell moves to the right-hand side is its
+    // share owner's to add.
+    CutSystemBlocks::Part part(*blocks, false);
+    constraints.distribute_local_to_global(local, dofs, part);
+  }
+
+  template <int dim>
+  bool
+  CutStokesSolve<dim>::writes_held_rows(
+    const std::vector<types::global_dof_index> &dofs) const
+  {
+    for (const auto i : dofs)
+      {
+        if (i >= n_fluid)
+          continue;
+        if (blocks->owns_velocity_row(i))
+          return true;
+        if (const auto *entries = constraints.get_constraint_entries(i))
+          for (const auto &entry : *entries)
+            if (blocks->owns_velocity_row(entry.first))
+              return true;
+      }
+    return false;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::gather_velocity_diagonal()
+  {
+    velocity_diagonal.reinit(n_total);
+    for (unsigned int i = 0; i < n_fluid; ++i)
+      if (blocks->owns_velocity_row(i))
+        velocity_diagonal[i] = blocks->diag_element(i);
+    Utilities::MPI::sum(velocity_diagonal, s.communicator, velocity_diagonal);
   }
 
   template <int dim>
@@ -380,27 +437,46 @@ namespace Fidus
         }
     // This rank's share of the fluid cells, cut and full each dealt round
     // robin (all of them on one rank).
-    std::vector<cell_iterator> cut, full;
-    unsigned int               n_cut = 0, n_full = 0;
+    // With K's velocity rows split among the ranks, also the cells outside
+    // the share that write this rank's rows (those only for them).
+    std::vector<std::pair<cell_iterator, bool>> cut;
+    std::vector<cell_iterator>                  full;
+    std::vector<bool>                           full_share;
+    unsigned int                                n_cut = 0, n_full = 0;
+    std::vector<types::global_dof_index>        cell_dofs(n_local);
+    const auto held = [&](const cell_iterator &cell) {
+      if (!split_rows)
+        return false;
+      cell->get_dof_indices(cell_dofs);
+      return writes_held_rows(cell_dofs);
+    };
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->active_fe_index() == 0)
         {
-          if (placed(cell).n_cut > 0)
+          const bool is_cut = placed(cell).n_cut > 0;
+          const bool share  = mine(is_cut ? n_cut++ : n_full++);
+          if (!share && !held(cell))
+            continue;
+          if (is_cut)
+            cut.emplace_back(cell, share);
+          else
             {
-              if (mine(n_cut++))
-                cut.push_back(cell);
+              full.push_back(cell);
+              full_share.push_back(share);
             }
-          else if (mine(n_full++))
-            full.push_back(cell);
         }
     // The cut cells are integrated on the threads and added one at a time
     // (those of a particle share its rigid unknowns' rows).
     WorkStream::run(
       cut.begin(),
       cut.end(),
-      [this](const typename std::vector<cell_iterator>::iterator &cell,
-             CellScratch                                         &sc,
-             CellCopy &cp) { assemble_cell(*cell, sc, cp); },
+      [this](const typename std::vector<
+               std::pair<cell_iterator, bool>>::iterator &cell,
+             CellScratch                                 &sc,
+             CellCopy                                    &cp) {
+        assemble_cell(cell->first, sc, cp);
+        cp.share = cell->second;
+      },
       [this](const CellCopy &cp) { distribute_cell(cp); },
       scratch,
       copy);
@@ -423,7 +499,10 @@ namespace Fidus
                           const cell_iterator &cell = full[colour[k]];
                           cell->get_dof_indices(dofs);
                           const auto &cached = full_cells.at(cell->level());
-                          distribute(cached.first, cached.second, dofs);
+                          distribute(cached.first,
+                                     cached.second,
+                                     dofs,
+                                     full_share[colour[k]]);
                         }
                     });
   }
@@ -435,7 +514,26 @@ namespace Fidus
     // Every rank built the same patterns, so the shares add entry by entry.
     if (n_ranks == 1)
       return;
-    if (blocks)
+    if (split_rows)
+      {
+        // K's velocity rows are each held whole by one rank; its rigid
+        // rows (last in K, on the same pattern on every rank) are summed.
+        for (SparseMatrix<double> *block :
+             {&blocks->bt, &blocks->b, &blocks->p})
+          Utilities::MPI::sum(*block, s.communicator, *block);
+        const unsigned int  n_v = particles.size() * n_rigid;
+        const unsigned int  n_k = blocks->k.m();
+        std::vector<double> rigid_values;
+        for (unsigned int r = n_k - n_v; r < n_k; ++r)
+          for (auto it = blocks->k.begin(r); it != blocks->k.end(r); ++it)
+            rigid_values.push_back(it->value());
+        Utilities::MPI::sum(rigid_values, s.communicator, rigid_values);
+        std::size_t at = 0;
+        for (unsigned int r = n_k - n_v; r < n_k; ++r)
+          for (auto it = blocks->k.begin(r); it != blocks->k.end(r); ++it)
+            it->value() = rigid_values[at++];
+      }
+    else if (blocks)
       for (SparseMatrix<double> *block :
            {&blocks->k, &blocks->bt, &blocks->b, &blocks->p})
         Utilities::MPI::sum(*block, s.communicator, *block);
@@ -447,6 +545,8 @@ namespace Fidus
     Utilities::MPI::sum(pressure_mean, s.communicator, pressure_mean);
     if (periodic)
       Utilities::MPI::sum(unconstrained, s.communicator, unconstrained);
+    if (split_rows)
+      gather_velocity_diagonal();
   }
 
   template <int dim>
@@ -612,17 +712,44 @@ namespace Fidus
     FaceCopy       copy;
     Vector<double> face_rhs;
     // This rank's share of the faces, dealt round robin.
-    std::vector<const GhostFace *> share;
+    // With K's velocity rows split, also the faces outside the share that
+    // write this rank's rows (those only for them).
+    std::vector<std::pair<const GhostFace *, bool>> share;
+    std::vector<types::global_dof_index>            dofs(n_local), both;
     for (unsigned int k = 0; k < ghost_faces.size(); ++k)
-      if (mine(k))
-        share.push_back(&ghost_faces[k]);
+      {
+        const bool in_share = mine(k);
+        bool       held     = false;
+        if (!in_share && split_rows)
+          {
+            both.clear();
+            for (const auto &cell :
+                 {ghost_faces[k].cell, ghost_faces[k].neighbour})
+              {
+                cell->get_dof_indices(dofs);
+                both.insert(both.end(), dofs.begin(), dofs.end());
+              }
+            held = writes_held_rows(both);
+          }
+        if (in_share || held)
+          share.emplace_back(&ghost_faces[k], in_share);
+      }
     WorkStream::run(
       share.begin(),
       share.end(),
-      [this](const typename std::vector<const GhostFace *>::iterator &ghost,
-             FaceScratch                                             &sc,
-             FaceCopy &cp) { assemble_face(**ghost, sc, cp); },
+      [this](const typename std::vector<
+               std::pair<const GhostFace *, bool>>::iterator &ghost,
+             FaceScratch                                     &sc,
+             FaceCopy                                        &cp) {
+        assemble_face(*ghost->first, sc, cp);
+        cp.share = ghost->second;
+      },
       [this, &face_rhs](const FaceCopy &cp) {
+        if (!cp.share)
+          {
+            add_to_held_rows(cp.face_matrix, cp.face_dofs);
+            return;
+          }
         if (periodic)
           add_sorted(unconstrained, cp.face_dofs, cp.face_matrix, wall_rows);
         // With the right-hand side: a face next to the box's boundary

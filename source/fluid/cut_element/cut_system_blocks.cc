@@ -7,6 +7,19 @@ namespace Fidus
   CutSystemBlocks::reinit(const SparsityPattern            &system,
                           const std::vector<unsigned char> &kind)
   {
+    reinit(system, kind, 0, static_cast<unsigned int>(-1));
+  }
+
+
+
+  void
+  CutSystemBlocks::reinit(const SparsityPattern            &system,
+                          const std::vector<unsigned char> &kind,
+                          const unsigned int                k_first,
+                          const unsigned int                k_end)
+  {
+    this->k_first        = k_first;
+    this->k_end          = k_end;
     const unsigned int n = kind.size();
     AssertDimension(system.n_rows(), n);
     this->kind = kind;
@@ -36,6 +49,11 @@ namespace Fidus
     // hold their diagonal first, then ascending columns, and the maps keep
     // the order, so each block's row comes out in order: one pass counts,
     // one writes, nothing is sorted.
+    // A velocity row of K this rank does not hold keeps its diagonal
+    // alone (a square pattern's).
+    const auto k_held = [&](const unsigned int i) {
+      return kind[i] != 0 || (local[i] >= k_first && local[i] < k_end);
+    };
     std::vector<unsigned int> k_lengths(n), p_lengths(n);
     on_row_ranges(n, 4, [&](const unsigned int first, const unsigned int last) {
       for (unsigned int i = first; i < last; ++i)
@@ -47,13 +65,18 @@ namespace Fidus
                                    const unsigned int               n_columns,
                                    const bool pressure_columns) {
       const bool                square = rows.size() == n_columns;
+      const bool                on_k   = square && !pressure_columns;
       std::vector<unsigned int> lengths(rows.size());
       for (unsigned int r = 0; r < rows.size(); ++r)
-        lengths[r] = (pressure_columns ? p_lengths : k_lengths)[rows[r]];
+        lengths[r] = on_k && !k_held(rows[r]) ?
+                       1 :
+                       (pressure_columns ? p_lengths : k_lengths)[rows[r]];
       pattern.fill_ordered(rows.size(),
                            n_columns,
                            lengths,
                            [&](const unsigned int r, unsigned int *columns) {
+                             if (on_k && !k_held(rows[r]))
+                               return;
                              for (auto it  = system.begin(rows[r]),
                                        end = system.end(rows[r]);
                                   it != end;
@@ -88,6 +111,32 @@ namespace Fidus
                        const bool       elide_zero_values,
                        const bool       col_indices_are_sorted)
   {
+    add_part(row,
+             n_columns,
+             columns,
+             values,
+             elide_zero_values,
+             col_indices_are_sorted,
+             true);
+  }
+
+
+
+  void
+  CutSystemBlocks::add_part(const size_type  row,
+                            const size_type  n_columns,
+                            const size_type *columns,
+                            const double    *values,
+                            const bool       elide_zero_values,
+                            const bool       col_indices_are_sorted,
+                            const bool       summed_rows)
+  {
+    // K's velocity rows: where this rank holds them; everything else: from
+    // the cells whose sum over the ranks is the system.
+    const bool to_k  = kind[row] == 0 ? owns_velocity_row(row) : summed_rows;
+    const bool to_bt = summed_rows;
+    if (!to_k && !to_bt)
+      return;
     // Called from several threads at once (on rows no other thread
     // writes): the split row is the caller's thread's own.
     thread_local std::vector<size_type> k_columns, p_columns;
@@ -113,7 +162,7 @@ namespace Fidus
     const bool on_k = kind[row] != 1;
     // The maps keep the order within each kind (see the class's
     // documentation), so sorted columns stay sorted.
-    if (!k_columns.empty())
+    if (!k_columns.empty() && to_k)
       (on_k ? k : b)
         .add(local[row],
              k_columns.size(),
@@ -121,7 +170,7 @@ namespace Fidus
              k_values.data(),
              elide_zero_values,
              col_indices_are_sorted);
-    if (!p_columns.empty())
+    if (!p_columns.empty() && to_bt)
       (on_k ? bt : p)
         .add(local[row],
              p_columns.size(),

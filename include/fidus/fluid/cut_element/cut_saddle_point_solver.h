@@ -94,6 +94,11 @@ namespace Fidus
       /// them is summed over the ranks; FGMRES, the pressure side and the
       /// couplings run on every rank alike.
       MPI_Comm communicator = MPI_COMM_SELF;
+      /// On more than one rank: the rows of K (velocities, then rigid
+      /// unknowns) whose velocity rows this rank's K holds; the others are
+      /// empty there, as CutSystemBlocks::reinit() leaves them with k_first
+      /// and k_end.
+      unsigned int k_first = 0, k_end = 0;
     };
 
     /// The cost of one solve.
@@ -236,7 +241,10 @@ namespace Fidus
     /// the ranks (K itself is freed once they are copied) and the vectors
     /// on those rows; k_x, k_y the whole vectors they are gathered into.
     void
-    split_velocity_block(const MPI_Comm communicator);
+    split_velocity_block(const Layout &layout);
+    /// K's diagonal (every rank holds its own velocity rows only): from
+    /// the ranks with the split, from K without.
+    Vector<double> k_diagonal;
     /// dst = K src (whole vectors), from the ranks' rows of K.
     void
     k_vmult(Vector<double> &dst, const Vector<double> &src) const;

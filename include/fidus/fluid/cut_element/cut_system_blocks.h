@@ -53,6 +53,83 @@ namespace Fidus
     reinit(const SparsityPattern            &system,
            const std::vector<unsigned char> &kind);
 
+    /**
+     * The same for a rank of several that share the solve: K holds only
+     * the velocity rows numbered @p k_first to @p k_end - 1 within K (the
+     * rows this rank owns; the others keep an empty diagonal), and the
+     * rigid rows, Bᵀ, B and P whole (summed over the ranks' shares of the
+     * cells). Write into it through Part.
+     */
+    void
+    reinit(const SparsityPattern            &system,
+           const std::vector<unsigned char> &kind,
+           const unsigned int                k_first,
+           const unsigned int                k_end);
+
+    /// Whether system row @p i is a velocity row of K that this rank owns
+    /// (every velocity row without the split).
+    bool
+    owns_velocity_row(const size_type i) const
+    {
+      return kind[i] == 0 && local[i] >= k_first && local[i] < k_end;
+    }
+
+    /**
+     * What one cell or face adds with the split K: its entries in the
+     * velocity rows this rank owns always; with @p summed_rows (the cell
+     * is in this rank's share, whose sum over the ranks is the system)
+     * also those of Bᵀ, B, P and the rigid rows. A matrix to
+     * AffineConstraints::distribute_local_to_global() as CutSystemBlocks
+     * is.
+     */
+    class Part
+    {
+    public:
+      using size_type  = types::global_dof_index;
+      using value_type = double;
+      Part(CutSystemBlocks &blocks, const bool summed_rows)
+        : blocks(blocks)
+        , summed_rows(summed_rows)
+      {}
+      virtual ~Part() = default;
+      size_type
+      m() const
+      {
+        return blocks.m();
+      }
+      size_type
+      n() const
+      {
+        return blocks.n();
+      }
+      void
+      add(const size_type  row,
+          const size_type  n_columns,
+          const size_type *columns,
+          const double    *values,
+          const bool       elide_zero_values      = false,
+          const bool       col_indices_are_sorted = false)
+      {
+        blocks.add_part(row,
+                        n_columns,
+                        columns,
+                        values,
+                        elide_zero_values,
+                        col_indices_are_sorted,
+                        summed_rows);
+      }
+
+      void
+      add(const size_type i, const size_type j, const double value)
+      {
+        add(i, 1, &j, &value);
+      }
+
+    private:
+      CutSystemBlocks &blocks;
+      const bool       summed_rows;
+    };
+
     /// The system's size (both dimensions).
     size_type
     m() const
@@ -75,6 +152,15 @@ namespace Fidus
         const bool       elide_zero_values      = false,
         const bool       col_indices_are_sorted = false);
 
+    /// add() of the rows Part lets through (see there).
+    void
+    add_part(const size_type  row,
+             const size_type  n_columns,
+             const size_type *columns,
+             const double    *values,
+             const bool       elide_zero_values,
+             const bool       col_indices_are_sorted,
+             const bool       summed_rows);
     /// The system's entry (@p i, @p j) += @p value.
     void
     add(const size_type i, const size_type j, const double value)
@@ -97,6 +183,8 @@ namespace Fidus
     /// The rows of K (velocities, then rigid unknowns) and of B and P
     /// (pressures), by their system index.
     std::vector<unsigned int> k_rows, p_rows;
+    /// The velocity rows of K held (all without the split).
+    unsigned int k_first = 0, k_end = static_cast<unsigned int>(-1);
     /// Each unknown's kind, and its row within K or within P.
     std::vector<unsigned char> kind;
     std::vector<unsigned int>  local;
