@@ -32,6 +32,10 @@ namespace Fidus
    * Within each kind the unknowns keep the system's order, and the rigid
    * unknowns are numbered after the fluid's, so each block's row keeps its
    * columns in ascending order and an added row is walked once.
+   *
+   * On more than one rank (the second reinit()) a rank's K holds only its
+   * own velocity rows, each assembled whole there, and the rest is summed
+   * over the ranks' shares of the cells (Part).
    */
   class CutSystemBlocks
   {
