@@ -97,6 +97,12 @@ for n in (2, 3):
                                rows('spheres_iterative-%d' % n, name),
                                groups),
               0., 1e-8)
+for name, groups in (('particles.csv', PARTICLES[3]),
+                     ('statistics.csv', STRESS + (('wall_shear_stress',),))):
+    check('walls3d, iterative: %s on 2 ranks against 1' % name,
+          worst_difference(rows('walls3d-1', name), rows('walls3d-2', name),
+                           groups),
+          0., 1e-8)
 check('spheres: particles.csv iterative against direct, 1 rank',
       worst_difference(rows('spheres-1', 'particles.csv'),
                        rows('spheres_iterative-1', 'particles.csv'),

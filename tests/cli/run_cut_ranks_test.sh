@@ -17,6 +17,8 @@
 #     its multigrid split among the ranks) at the tolerance 1e-11: 2 and 3
 #     ranks against 1 within 1e-8, and 1 rank against the direct solver
 #     within 1e-7;
+#     and between sliding walls (periodic faces, the walls' stress from
+#     rows summed over the ranks' shares): 2 ranks against 1 within 1e-8;
 #  5. 3D with 'auto' on 2 ranks (which iterates, every rank holding the
 #     whole system) is warned about, once; with 'direct' set, not.
 # Usage: run_cut_ranks_test.sh path/to/fidus path/to/repo
@@ -88,6 +90,12 @@ for ranks in 1 2; do
 done
 for ranks in 1 2 3; do
   run spheres_iterative $ranks
+done
+scene walls3d 3 "sliding walls" 0.15 "0.3, 0.45, 0.5; 0.7, 0.6, 0.5" "" 2,3 |
+  sed -e 's/set Cut minimum gap = 1e-3/&\n  set Cut linear solver = iterative\n  set Cut linear tolerance = 1e-11/' \
+      -e 's/End time = 0.4/End time = 0.2/' > walls3d.prm
+for ranks in 1 2; do
+  run walls3d $ranks
 done
 check "the ranks agree (check_cut_ranks.py)" \
   "$python" "$repo/tests/cli/check_cut_ranks.py" "$work"

@@ -130,8 +130,9 @@ namespace Fidus
      * n_u = velocity_unknowns.size() is the system velocity
      * @p velocity_unknowns[k], and whose @p n_rigid last rows are the
      * particles' rigid unknowns: those are carried unchanged through every
-     * level, so each coarse level holds them exactly. @p matrix must outlive
-     * the object.
+     * level, so each coarse level holds them exactly. @p matrix is not
+     * read afterwards (the finest level is copied without its couplings
+     * between components, in float or double).
      */
     void
     initialize(const SparseMatrix<double>      &matrix,
