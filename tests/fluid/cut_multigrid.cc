@@ -154,6 +154,49 @@ namespace
 
 
 
+  /// CG with @p multigrid for @p block x = @p b, the block's rows split
+  /// evenly among the ranks (the hierarchy built on them); @p x whole.
+  void
+  cg_over_ranks(const SparseMatrix<double>      &block,
+                const Vector<double>            &b,
+                const std::vector<unsigned int> &velocity_unknowns,
+                Fidus::CutVelocityMultigrid<2>  &multigrid,
+                SolverControl                   &control,
+                Vector<double>                  &x)
+  {
+    const unsigned int n_u = block.m();
+    // The block's rows split evenly among the ranks; CG on them.
+    const MPI_Comm     comm  = MPI_COMM_WORLD;
+    const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
+    const IndexSet     owned =
+      Fidus::contiguous_range(n_u * (rank + 1) / ranks - n_u * rank / ranks,
+                              comm);
+    std::vector<std::size_t>             start{0};
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    for (const auto i : owned)
+      {
+        for (auto it = block.begin(i); it != block.end(i); ++it)
+          {
+            columns.push_back(it->column());
+            values.push_back(it->value());
+          }
+        start.push_back(columns.size());
+      }
+    Fidus::DistributedRows<double> rows;
+    rows.reinit(owned, owned, start, columns, values, comm);
+    multigrid.initialize(rows, velocity_unknowns);
+    LinearAlgebra::distributed::Vector<double> dx(owned, comm), db(owned, comm);
+    for (const auto i : owned)
+      db[i] = b[i];
+    SolverCG<LinearAlgebra::distributed::Vector<double>> cg(control);
+    cg.solve(rows, dx, db, multigrid);
+    for (const auto i : owned)
+      x[i] = dx[i];
+    Utilities::MPI::sum(x, comm, x);
+  }
+
   /// CG with the multigrid for base level @p level; periodic along x or
   /// walls all round; the hole's surface held at zero velocity or free;
   /// the vector Laplacian or the symmetric gradient; the multigrid's
@@ -280,37 +323,7 @@ namespace
     SolverControl                  control(500, 1e-10 * b.l2_norm());
     if (distributed)
       {
-        // The block's rows split evenly among the ranks; CG on them.
-        const MPI_Comm     comm  = MPI_COMM_WORLD;
-        const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm);
-        const unsigned int rank  = Utilities::MPI::this_mpi_process(comm);
-        const IndexSet     owned =
-          Fidus::contiguous_range(n_u * (rank + 1) / ranks - n_u * rank / ranks,
-                                  comm);
-        std::vector<std::size_t>             start{0};
-        std::vector<types::global_dof_index> columns;
-        std::vector<double>                  values;
-        for (const auto i : owned)
-          {
-            for (auto it = block.begin(i); it != block.end(i); ++it)
-              {
-                columns.push_back(it->column());
-                values.push_back(it->value());
-              }
-            start.push_back(columns.size());
-          }
-        Fidus::DistributedRows<double> rows;
-        rows.reinit(owned, owned, start, columns, values, comm);
-        multigrid.initialize(rows, velocity_unknowns);
-        LinearAlgebra::distributed::Vector<double> dx(owned, comm),
-          db(owned, comm);
-        for (const auto i : owned)
-          db[i] = b[i];
-        SolverCG<LinearAlgebra::distributed::Vector<double>> cg(control);
-        cg.solve(rows, dx, db, multigrid);
-        for (const auto i : owned)
-          x[i] = dx[i];
-        Utilities::MPI::sum(x, comm, x);
+        cg_over_ranks(block, b, velocity_unknowns, multigrid, control, x);
       }
     else
       {

@@ -730,6 +730,18 @@ namespace Fidus
 
   template <int dim>
   void
+  CutSaddlePointSolver<dim>::take_held_rows(const Vector<double> &src) const
+  {
+    const unsigned int first = k_rows->first_row();
+    std::copy(src.begin() + first,
+              src.begin() + first + k_in.locally_owned_size(),
+              k_in.begin());
+  }
+
+
+
+  template <int dim>
+  void
   CutSaddlePointSolver<dim>::k_vmult(Vector<double>       &dst,
                                      const Vector<double> &src) const
   {
@@ -738,10 +750,7 @@ namespace Fidus
         velocity_matrix.vmult(dst, src);
         return;
       }
-    const unsigned int first = k_rows->first_row();
-    std::copy(src.begin() + first,
-              src.begin() + first + k_in.locally_owned_size(),
-              k_in.begin());
+    take_held_rows(src);
     k_rows->vmult(k_out, k_in);
     gather(k_out, dst);
   }
@@ -758,10 +767,7 @@ namespace Fidus
         multigrid->vmult(dst, src);
         return;
       }
-    const unsigned int first = k_rows->first_row();
-    std::copy(src.begin() + first,
-              src.begin() + first + k_in.locally_owned_size(),
-              k_in.begin());
+    take_held_rows(src);
     multigrid->vmult(k_out, k_in);
     gather(k_out, dst);
   }

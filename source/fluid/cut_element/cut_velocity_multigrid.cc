@@ -688,8 +688,16 @@ namespace Fidus
   CutVelocityMultigrid<dim>::vmult(Vector<double>       &dst,
                                    const Vector<double> &src) const
   {
+    // One rank: the cycle's own vectors hold all the rows.
+    if (settings.single_precision)
+      {
+        std::copy(src.begin(), src.end(), src_f.begin());
+        v_cycle(0, dst_f, src_f);
+        std::copy(dst_f.begin(), dst_f.end(), dst.begin());
+        return;
+      }
     std::copy(src.begin(), src.end(), src_d.begin());
-    vmult(dst_d, src_d);
+    v_cycle(0, dst_d, src_d);
     std::copy(dst_d.begin(), dst_d.end(), dst.begin());
   }
 

@@ -245,6 +245,9 @@ namespace Fidus
     /// K's diagonal (every rank holds its own velocity rows only): from
     /// the ranks with the split, from K without.
     Vector<double> k_diagonal;
+    /// k_in = this rank's rows of the whole vector @p src.
+    void
+    take_held_rows(const Vector<double> &src) const;
     /// dst = K src (whole vectors), from the ranks' rows of K.
     void
     k_vmult(Vector<double> &dst, const Vector<double> &src) const;
