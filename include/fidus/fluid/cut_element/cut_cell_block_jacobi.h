@@ -47,7 +47,7 @@ namespace Fidus
      * positive definite takes the inverse of its spectral absolute value
      * (n_indefinite_blocks()). With @p component (one entry per row),
      * @p a is read without its entries (i, j) whose rows hold different
-     * components (neither 255), as galerkin_product() reads it.
+     * components (neither 255), as distributed_galerkin_product() reads it.
      */
     void
     initialize(const SparseMatrix<double>                   &a,
