@@ -11,12 +11,17 @@
 #   dense2d    prm/rheology_steady_shear_2d_cut.prm with the sub-grid
 #              correction below 0.02 a and no gap cells, 4 solves (the
 #              direct solver);
-#   dense2d_resolved  the same prm as shipped (every gap resolved), 2 solves.
+#   dense2d_resolved  the same prm as shipped (every gap resolved), 2 solves;
+#   dense3d    the 37 spheres of prm/rheology_steady_shear_3d.prm (phi =
+#              0.3, sliding walls) at their generated start, a/h = 2, the
+#              sub-grid correction below 0.4 a, no gap cells, 2 solves.
 # Env: SCENES (default "sphere3d pair3d dense2d"), BINARIES ("label=path
-# ...", default "current=build-release/fidus"), REPEAT (default 1), WORK
-# (keep the runs there). Prints one Markdown row per build and scene (the
-# seconds per solve, the unknowns and FGMRES of the first solve, and the
-# peak memory).
+# ...", default "current=build-release/fidus"), RANKS (MPI ranks, default
+# "1"; several: "1 2", each run with mpirun --bind-to none, so that one
+# rank takes every core as threads), REPEAT (default 1), WORK (keep the
+# runs there). Prints one Markdown row per build, scene and number of ranks
+# (the seconds per solve, the unknowns and FGMRES of the first solve, and
+# the peak memory per rank).
 # Usage: BINARIES="before=/path/fidus after=build-release/fidus" \
 #          contrib/benchmarks/cut_stages.sh
 set -euo pipefail
@@ -74,24 +79,67 @@ PRM
     dense2d_resolved) sed -e "s#^set Output directory.*#set Output directory = $2#" \
                  -e 's/End time  = 1.5/End time  = 0.02/' \
                  -e "$verbose" "$top/prm/rheology_steady_shear_2d_cut.prm" ;;
-    *) echo "cut_stages.sh: unknown scene '$1'; allowed: sphere3d pair3d dense2d dense2d_resolved" >&2; exit 1 ;;
+    dense3d) cat <<PRM
+set Dimension        = 3
+set Output directory = $2
+subsection Domain
+  set Lower left         = 0, 0, 0
+  set Upper right        = 1, 1, 1
+  set Boundary condition = sliding walls
+end
+subsection Fluid
+  set Model                  = cut finite element
+  set Cut minimum gap        = 0.4
+  set Cut gap cells          = 0
+  set Lubrication correction = true
+end
+subsection Particles
+  subsection Generator
+    set Fraction           = 0.3
+    set Radii              = 0.125
+    set Minimum separation = 0.01
+    set Seed               = 1
+  end
+end
+subsection Contact
+  set Model = gluey
+end
+subsection Time stepping
+  set End time  = 0.002
+  set Time step = 0.002
+end
+subsection Mesh refinement
+  set Initial global refinement = 4
+  set Minimum level             = 4
+  set Maximum level             = 4
+end
+subsection Output
+  set Verbosity = verbose
+end
+PRM
+    ;;
+    *) echo "cut_stages.sh: unknown scene '$1'; allowed: sphere3d pair3d dense2d dense2d_resolved dense3d" >&2; exit 1 ;;
   esac
 }
 
-echo "| scene | build | round | unknowns | FGMRES | mesh | DoFs and pattern | assembly | solve | of which FGMRES | measure | s per solve | peak |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+echo "| scene | build | ranks | round | unknowns | FGMRES | mesh | DoFs and pattern | assembly | solve | of which FGMRES | measure | s per solve | peak |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for round in $(seq "${REPEAT:-1}"); do
   for scene in $scenes; do
+    for ranks in ${RANKS:-1}; do
     for binary in $BINARIES; do
       label="${binary%%=*}"; path="${binary#*=}"
-      run="$work/${scene}_${label}_$round"
+      run="$work/${scene}_${label}_${ranks}_$round"
       scene_prm "$scene" "$run" > "$run.prm"
-      if ! "$path" "$run.prm" > "$run.log" 2>&1; then
-        echo "| $scene | $label | $round | run failed: $run.log |"; continue
+      launch=()
+      [ "$ranks" = 1 ] || launch=(mpirun --bind-to none -np "$ranks")
+      if ! "${launch[@]}" "$path" "$run.prm" > "$run.log" 2>&1; then
+        echo "| $scene | $label | $ranks | $round | run failed: $run.log |"; continue
       fi
-      /usr/bin/python3 - "$run.log" "$scene" "$label" "$round" <<'PY'
+      /usr/bin/python3 - "$run.log" "$scene" "$label" "$round" "$ranks" <<'PY'
 import re, statistics, sys
-log, scene, label, rnd = sys.argv[1:]
+log, scene, label, rnd, ranks = sys.argv[1:]
 text = open(log).read()
 keys = ["mesh", "DoFs and pattern", "assembly", "solve", "of which FGMRES", "measure", "all"]
 rows = []
@@ -105,10 +153,11 @@ for line in text.splitlines():
     rows.append((row, unknowns, fgmres.group(1) if fgmres else "direct"))
 peak = re.search(r"peak memory per rank: ([0-9.]+ [KMG]B)", text)
 mean = {k: statistics.mean(r[0][k] for r in rows) for k in keys}
-print("| %s | %s | %s | %s | %s | %s | %s |" % (
-    scene, label, rnd, rows[0][1], rows[0][2],
+print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+    scene, label, ranks, rnd, rows[0][1], rows[0][2],
     " | ".join("%.2f" % mean[k] for k in keys), peak.group(1) if peak else "?"))
 PY
+    done
     done
   done
 done

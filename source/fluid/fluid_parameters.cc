@@ -25,11 +25,10 @@ namespace Fidus
       "Nitsche's method, on a mesh built for every solve (from Mesh "
       "refinement/Minimum level to Maximum level at the surfaces, thin "
       "gaps, between particles and to the walls, further); one solve "
-      "(Cut linear solver) on one MPI rank (the iterative solver with the "
-      "machine's cores as threads, at most DEAL_II_NUM_THREADS), in a box "
-      "whose sides are whole "
-      "multiples of the shortest, in linear shear or between sliding "
-      "walls, from a pair to a dense 2D suspension "
+      "(Cut linear solver) on any number of MPI ranks (on one machine "
+      "fastest on one rank, with the machine's cores as threads, at most "
+      "DEAL_II_NUM_THREADS), in any box, in linear shear or between "
+      "sliding walls, from a pair to a dense suspension "
       "(doc/theory/cut_element.md).");
     prm.declare_entry("Viscosity",
                       "1",

@@ -46,8 +46,6 @@ expect_error() {
 cut_fluid() { printf 'subsection Fluid\n  set Model = cut finite element\n%s\nend\n' "$1"; }
 expect_error "cut element in the cavity" "Domain/Boundary condition' is not 'linear shear' or 'sliding walls' with 'Fluid/Model = cut finite element'; allowed: 'linear shear' or 'sliding walls'" \
   "$(base; cut_fluid ''; printf 'subsection Domain\n  set Boundary condition = cavity\nend\n')"
-expect_error "cut element in a box of uneven sides" "Domain/Upper right' give a side of 1.5 in x, 1.5 times the shortest side 1, with 'Fluid/Model = cut finite element'; allowed: sides that are whole multiples of the shortest" \
-  "$(base; cut_fluid ''; printf 'subsection Domain\n  set Upper right = 1.5, 1\nend\n')"
 expect_error "cut element minimum gap 0" "Fluid/Cut minimum gap' has the value '0'; allowed: auto or a value > 0" \
   "$(base; cut_fluid '  set Cut minimum gap = 0')"
 expect_error "cut element Nitsche parameter 0" "Fluid/Cut Nitsche parameter' has the value 0; allowed: a value > 0" \

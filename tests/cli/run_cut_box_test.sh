@@ -22,7 +22,11 @@
 #     the translational velocities, the angular velocities and the
 #     stresslets are within 1e3 times it of the direct solver's (each
 #     relative to its largest value; measured: 15-35 times for U and the
-#     stresslets, 180-400 for omega).
+#     stresslets, 180-400 for omega);
+#  6. a box whose sides are not whole multiples of the shortest, 1.37 x 1
+#     (its cells are not squares), and the same box scaled by 2 and moved
+#     to (0, 2): the same motions, velocities doubled (to 1e-7, as 1.), and
+#     its fields cover the box, with the shear's velocity on the walls.
 # Usage: run_cut_box_test.sh path/to/fidus path/to/repo
 . "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 
@@ -135,6 +139,47 @@ for name, tolerance in (("tolerance-10", 1e-10), ("tolerance-6", 1e-6)):
                                         1e3 * tolerance))
     ok = ok and worst < 1e3 * tolerance
 ok = ok and iterations("tolerance-6") < iterations("tolerance-10")
+sys.exit(0 if ok else 1)
+PY
+
+# 6. A box of sides 1.37 x 1, unscaled and scaled by 2 to (0, 2)-(2.74, 4).
+scene uneven "0, 0" "1.37, 1" 0.05 "0.98, 0.8; 0.52, 0.5; 0.3, 0.25; 1.2, 0.6" \
+  > uneven.prm
+scene uneven-scaled "0, 2" "2.74, 4" 0.1 \
+  "1.96, 3.6; 1.04, 3; 0.6, 2.5; 2.4, 3.2" > uneven-scaled.prm
+for name in uneven uneven-scaled; do
+  check "fidus runs $name.prm" "$fidus" $name.prm
+done
+check "the box 1.37 x 1: scaled motions, fields on the box" \
+  "$python" - "$work" "$repo/tests/cli" <<'PY'
+import csv, glob, sys
+sys.path.insert(0, sys.argv[2])
+from deal_vtu import vtu_arrays
+def last(name):
+    rows = list(csv.DictReader(open(sys.argv[1] + "/%s/particles.csv" % name)))
+    step = max(int(r["step"]) for r in rows)
+    return [[float(r[k]) for k in ("x", "y", "ux", "uy", "omega_z")]
+            for r in rows if int(r["step"]) == step]
+one, two, a = last("uneven"), last("uneven-scaled"), 0.05
+position = max(max(abs(q[0] / 2. - p[0]), abs((q[1] - 2.) / 2. - p[1])) / a
+               for p, q in zip(one, two))
+velocity = max(max(abs(q[2] / 2. - p[2]), abs(q[3] / 2. - p[3])) / a
+               for p, q in zip(one, two))
+omega = max(abs(q[4] - p[4]) for p, q in zip(one, two))
+moved = max(abs(p[0] - x0) for p, x0 in zip(one, (0.98, 0.52, 0.3, 1.2)))
+# The points are written in single precision.
+files = sorted(glob.glob(sys.argv[1] + "/uneven-scaled/solution_*.vtu"))
+f = vtu_arrays(files[-1])
+xs = f["points"][0::3]
+wall = max(abs(f["velocity"][3 * k] - (f["points"][3 * k + 1] - 3.))
+           for k in range(len(xs))
+           if min(abs(f["points"][3 * k + 1] - 2.),
+                  abs(f["points"][3 * k + 1] - 4.)) < 1e-9)
+print("positions %.1e a, velocities %.1e g a, omega %.1e g apart; the discs "
+      "moved up to %.2e; fields over x in [%g, %g], walls %.1e from the "
+      "shear" % (position, velocity, omega, moved, min(xs), max(xs), wall))
+ok = (position < 1e-8 and velocity < 1e-7 and omega < 1e-7 and moved > 1e-3
+      and abs(min(xs)) < 1e-6 and abs(max(xs) - 2.74) < 1e-6 and wall < 1e-6)
 sys.exit(0 if ok else 1)
 PY
 

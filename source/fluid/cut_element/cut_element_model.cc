@@ -28,10 +28,15 @@ namespace Fidus
     , n(parameters.n_particles())
     , unit(box_geometry.smallest_side)
   {
-    // Whole multiples of the shortest side (CutElementParameters::check).
+    // In units of the shortest side; a side that is a whole multiple of it
+    // is made exactly that multiple, so that its coarse cells are cubes.
     for (unsigned int d = 0; d < dim; ++d)
-      box_cells.push_back(
-        static_cast<unsigned int>(std::lround((box.hi[d] - box.lo[d]) / unit)));
+      {
+        const double ratio = (box.hi[d] - box.lo[d]) / unit;
+        const double whole = std::round(ratio);
+        box_sides.push_back(std::abs(ratio - whole) <= 1e-9 * ratio ? whole :
+                                                                      ratio);
+      }
     // On more than one rank the iterative solve splits the velocity block
     // and its multigrid among the ranks, but every rank builds the whole
     // mesh and holds the rest of the system: on one machine that is slower
@@ -135,7 +140,7 @@ namespace Fidus
         Cut::Boundary::linear_shear;
     s.shear_rate = g;
     s.viscosity  = prm.fluid.viscosity;
-    s.box_cells  = box_cells;
+    s.box_sides  = box_sides;
     // The fields are kept for output, and as the next solve's start with
     // the iterative solver (keeping costs a second DoF numbering of the
     // mesh, small beside the solve).
@@ -239,7 +244,7 @@ namespace Fidus
     const double scale = std::pow(unit, dim);
     h.volume           = scale;
     for (unsigned int d = 0; d < dim; ++d)
-      h.volume *= box_cells[d];
+      h.volume *= box_sides[d];
     h.fluid_pressure         = r.fluid_pressure;
     h.solid_fraction         = 1. - scale * r.fluid_volume / h.volume;
     h.mean_strain_rate[0][1] = 0.5 * g;

@@ -206,26 +206,6 @@ namespace Fidus
                        "cut element's box has the shear's velocity on "
                        "every face, or on the walls y = 0, 1 with the other "
                        "faces periodic)");
-    // The cut mesh is built of cubes of the shortest side (CutMesh), so
-    // every side must hold a whole number of them.
-    const double shortest = scene.smallest_side();
-    for (unsigned int d = 0; d < scene.dimension; ++d)
-      {
-        const double ratio =
-          (domain.upper_right[d] - domain.lower_left[d]) / shortest;
-        if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio)
-          {
-            std::ostringstream m;
-            m << "entries 'Domain/Lower left' and 'Domain/Upper right' give "
-              << "a side of " << domain.upper_right[d] - domain.lower_left[d]
-              << " in "
-              << "xyz"[d] << ", " << ratio << " times the shortest side "
-              << shortest << ", with " << model
-              << "; allowed: sides that are whole multiples of the "
-                 "shortest (the cut mesh is made of cubes)";
-            throw InputError(m.str());
-          }
-      }
     if (!(minimum_gap > 0.))
       throw InputError("entry 'Fluid/Cut minimum gap' has the value " +
                        std::to_string(minimum_gap) +

@@ -88,7 +88,7 @@ namespace Fidus
   typename CutInitialGuess<dim>::cell_iterator
   CutInitialGuess<dim>::find(const Point<dim> &x) const
   {
-    // The coarse grid's cells are the box's unit cells; below them each
+    // The coarse grid's cells tile the box; below them each
     // refinement halves a cell, and child c lies in the upper half along
     // axis d where bit d of c is set.
     const Triangulation<dim> &tria = previous.mesh->get_triangulation();
@@ -209,11 +209,11 @@ namespace Fidus
         cached_level = cell->level();
         cached_index = cell->index();
       }
-    // The cells are cubes: the reference point is an affine map of x.
-    const double h  = cell->extent_in_direction(0);
-    Point<dim>   xi = cell->vertex(0);
+    // The cells are axis-parallel boxes: the reference point is x mapped
+    // axis by axis.
+    Point<dim> xi = cell->vertex(0);
     for (unsigned int d = 0; d < dim; ++d)
-      xi[d] = std::clamp((x[d] - xi[d]) / h, 0., 1.);
+      xi[d] = std::clamp((x[d] - xi[d]) / cell->extent_in_direction(d), 0., 1.);
     double u = 0.;
     for (unsigned int j = 0; j < indices.size(); ++j)
       if (fe.system_to_component_index(j).first == component)

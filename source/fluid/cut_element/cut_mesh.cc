@@ -65,21 +65,24 @@ namespace Fidus
       return p;
     }
 
-    /// A boundary cell's position on a face of the box (of unit cells):
-    /// its level and its lower corner in cells of that level, the face's
-    /// axis left out (0).
+    /// A boundary cell's position on a face of the box: its level and its
+    /// lower corner in cells of that level (the coarse cells' sides
+    /// @p coarse halved that many times), the face's axis left out (0).
     template <int dim>
     using FaceKey = std::pair<int, std::array<long, dim>>;
 
     template <int dim, typename CellIterator>
     FaceKey<dim>
-    face_key(const CellIterator &cell, const unsigned int axis)
+    face_key(const CellIterator            &cell,
+             const unsigned int             axis,
+             const std::array<double, dim> &coarse)
     {
       FaceKey<dim> key;
       key.first          = cell->level();
       const double cells = std::ldexp(1., cell->level());
       for (unsigned int d = 0; d < dim; ++d)
-        key.second[d] = d == axis ? 0 : std::lround(cell->vertex(0)[d] * cells);
+        key.second[d] =
+          d == axis ? 0 : std::lround(cell->vertex(0)[d] / coarse[d] * cells);
       return key;
     }
   } // namespace
@@ -98,6 +101,7 @@ namespace Fidus
     // box: the surface (the cut cells) and the gap rule (a cell within a
     // few of its sizes of another particle) look that far.
     const double reach = (s.gap_cells + 1.) * std::sqrt(dim) *
+                         *std::max_element(coarse.begin(), coarse.end()) *
                          std::ldexp(1., -int(s.global_level));
     for (unsigned int i = 0; i < centers.size(); ++i)
       {
@@ -171,7 +175,7 @@ namespace Fidus
       {
         for (const auto &cell : triangulation.active_cell_iterators())
           {
-            const double     band = s.band_cells * cell->extent_in_direction(0);
+            const double     band = s.band_cells * longest_side(cell);
             const Point<dim> x    = cell->center();
             for (const Ball &b : balls)
               if (std::abs((x - b.center).norm() - b.radius) < band)
@@ -210,8 +214,8 @@ namespace Fidus
             if (here.solid || here.n_cut == 0)
               continue;
             bool         near_other = here.n_cut >= 2;
-            const double reach      = (s.gap_cells + 0.5 * std::sqrt(dim)) *
-                                 cell->extent_in_direction(0);
+            const double reach =
+              (s.gap_cells + 0.5 * std::sqrt(dim)) * longest_side(cell);
             const Point<dim> x = cell->center();
             if (!near_other && s.gap_cells > 0.)
               for (const Ball &b : balls)
@@ -230,7 +234,7 @@ namespace Fidus
                 if (here.n_cut >= 2)
                   throw std::invalid_argument(
                     "CutStokesInclusion: a cell of size " +
-                    std::to_string(cell->extent_in_direction(0)) +
+                    std::to_string(longest_side(cell)) +
                     " is still cut by two particles after " +
                     std::to_string(s.max_gap_levels) +
                     " further levels; allowed: wider gaps or a larger "
@@ -255,17 +259,26 @@ namespace Fidus
                         const Settings                &s)
     : triangulation(Triangulation<dim>::limit_level_difference_at_vertices)
   {
-    std::vector<unsigned int> cells(dim, 1);
-    if (!s.box_cells.empty())
-      cells = s.box_cells;
-    Point<dim> upper;
+    std::vector<double> box(dim, 1.);
+    if (!s.box_sides.empty())
+      box = s.box_sides;
+    if (box.size() != dim)
+      throw std::invalid_argument("CutMesh: the box has not dim sides");
+    // Coarse cells of about unit size: cubes when the sides are whole
+    // numbers, and in any box of sides in [0.75, 1.5) (a side in [1, 1.5)
+    // is one cell, in [1.5, 2.5) two, ...), so less than twice as long one
+    // way as another.
+    std::vector<unsigned int> cells(dim);
+    Point<dim>                upper;
     for (unsigned int d = 0; d < dim; ++d)
       {
-        if (cells.size() != dim || cells[d] == 0)
+        if (!(box[d] >= 1.) || !std::isfinite(box[d]))
           throw std::invalid_argument(
-            "CutMesh: the box's numbers of unit cells are not dim "
-            "positive integers");
-        sides[d] = upper[d] = cells[d];
+            "CutMesh: a side of the box is below 1 (the shortest side is "
+            "the length unit) or not finite");
+        cells[d] = static_cast<unsigned int>(std::lround(box[d]));
+        sides[d] = upper[d] = box[d];
+        coarse[d]           = box[d] / cells[d];
       }
     std::vector<bool> periodic(dim, false);
     for (const unsigned int axis : s.periodic_axes)
@@ -273,8 +286,9 @@ namespace Fidus
     add_balls_with_images(centers, radii, s, periodic);
     check_gaps();
 
-    // Unit cells, so that a level is the same cell size whatever the box
-    // and the face keys below count cells of one size along every face.
+    // Cells of about unit size, so that a level is about the same cell
+    // size whatever the box, and the face keys below count cells of one
+    // size along each axis of a face.
     GridGenerator::subdivided_hyper_rectangle(triangulation,
                                               cells,
                                               Point<dim>(),
@@ -315,7 +329,7 @@ namespace Fidus
     for (const auto &cell : triangulation.active_cell_iterators())
       for (unsigned int side = 0; side < 2; ++side)
         if (cell->at_boundary(2 * axis + side))
-          sides[side][face_key<dim>(cell, axis)] = cell;
+          sides[side][face_key<dim>(cell, axis, coarse)] = cell;
     unsigned int flags = 0;
     for (unsigned int side = 0; side < 2; ++side)
       for (const auto &[key, cell] : sides[side])
@@ -358,11 +372,11 @@ namespace Fidus
     std::map<FaceKey<dim>, Cell> upper;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->at_boundary(2 * axis + 1))
-        upper[face_key<dim>(cell, axis)] = cell;
+        upper[face_key<dim>(cell, axis, coarse)] = cell;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->at_boundary(2 * axis))
         {
-          const auto found = upper.find(face_key<dim>(cell, axis));
+          const auto found = upper.find(face_key<dim>(cell, axis, coarse));
           if (found == upper.end())
             throw std::logic_error(
               "CutMesh: the periodic faces do not match after refinement");

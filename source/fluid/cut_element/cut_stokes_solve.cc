@@ -66,15 +66,13 @@ namespace Fidus
              "1 (over ranks the iterative solver splits the multigrid)");
     if (s.quadrature_points == 0)
       refuse("the number of Gauss points", 0, ">= 1");
-    if (!s.box_cells.empty() && s.box_cells.size() != dim)
-      refuse("the number of box_cells", s.box_cells.size(), "dim, or none");
-    for (const unsigned int n : s.box_cells)
-      if (n == 0)
-        refuse("a box side in unit cells", 0, ">= 1");
-    if (exact_case && side(0) * side(1) * (dim == 3 ? side(2) : 1.) != 1.)
-      refuse("the box's volume for the exact inclusion",
-             side(0) * side(1) * (dim == 3 ? side(2) : 1.),
-             "1 (the unit box)");
+    if (!s.box_sides.empty() && s.box_sides.size() != dim)
+      refuse("the number of box_sides", s.box_sides.size(), "dim, or none");
+    for (const double L : s.box_sides)
+      if (!(L >= 1.) || !std::isfinite(L))
+        refuse("a side of the box",
+               L,
+               ">= 1 and finite (the shortest side is the length unit)");
     for (unsigned int k = 0; k < particles.size(); ++k)
       {
         const auto &P = particles[k];
@@ -110,7 +108,7 @@ namespace Fidus
     mesh_settings.gap_cells      = s.gap_cells;
     mesh_settings.max_gap_levels = s.max_gap_levels;
     mesh_settings.periodic_axes  = periodic_axes;
-    mesh_settings.box_cells      = s.box_cells;
+    mesh_settings.box_sides      = s.box_sides;
     mesh = std::make_unique<const CutMesh<dim>>(centers, radii, mesh_settings);
     result.n_gap_refinements      = mesh->n_gap_refinements;
     result.n_periodic_refinements = mesh->n_periodic_refinements;
@@ -127,7 +125,7 @@ namespace Fidus
         const Placement &here = placed(cell);
         cell->set_active_fe_index(here.solid ? 1 : 0);
         result.n_cut_cells += (!here.solid && here.n_cut > 0);
-        result.h = std::min(result.h, cell->extent_in_direction(0));
+        result.h = std::min(result.h, CutMesh<dim>::shortest_side(cell));
       }
   }
 
@@ -611,11 +609,15 @@ namespace Fidus
       if (cell->active_fe_index() == 0)
         {
           cell->get_dof_indices(dofs);
-          const double h = cell->extent_in_direction(0);
+          const Point<dim>     lower = cell->vertex(0);
+          const Tensor<1, dim> h =
+            cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1) - lower;
           for (unsigned int k = 0; k < n_local; ++k)
             {
-              layout.support_point[dofs[k]] =
-                cell->vertex(0) + h * unit_points[k];
+              Point<dim> x = lower;
+              for (unsigned int d = 0; d < dim; ++d)
+                x[d] += h[d] * unit_points[k][d];
+              layout.support_point[dofs[k]] = x;
               layout.component[dofs[k]] =
                 taylor_hood.system_to_component_index(k).first;
             }

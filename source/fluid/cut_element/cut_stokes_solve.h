@@ -298,11 +298,11 @@ namespace Fidus
 
     /// @}
 
-    /// The box's side along axis @p d (Settings::box_cells).
+    /// The box's side along axis @p d (Settings::box_sides).
     double
     side(const unsigned int d) const
     {
-      return s.box_cells.empty() ? 1. : double(s.box_cells.at(d));
+      return s.box_sides.empty() ? 1. : s.box_sides.at(d);
     }
 
     /// Whether axis @p d is periodic.

@@ -250,9 +250,12 @@ namespace Fidus
       copy.ext_dofs[n_local + k] = n_fluid + P.owner * n_rigid + k;
     copy.local          = 0.;
     copy.local_pressure = 0.;
-    const double h      = cell->extent_in_direction(0);
+    const double h      = CutMesh<dim>::shortest_side(cell);
     scratch.generator.generate(
-      CutLevelSet<dim>(cell->vertex(0), h, P.center, P.radius),
+      CutLevelSet<dim>(cell->vertex(0),
+                       cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1),
+                       P.center,
+                       P.radius),
       unit_box);
     const Quadrature<dim> &q_outside =
       scratch.generator.get_outside_quadrature();
@@ -652,9 +655,11 @@ namespace Fidus
     copy.face_matrix.reinit(n_face, n_face);
     jumps.reinit(n_face, q_face.size() * n_jumps);
     signed_jumps.reinit(n_face, q_face.size() * n_jumps);
-    // Across a hanging face, the mean of the two cells' sizes.
-    const double h =
-      0.5 * (cell->extent_in_direction(0) + neighbour->extent_in_direction(0));
+    // The cells' sizes across the face (the derivatives jumped are normal
+    // to it); across a hanging face, the mean of the two.
+    const unsigned int axis = ghost.face / 2;
+    const double       h    = 0.5 * (cell->extent_in_direction(axis) +
+                            neighbour->extent_in_direction(axis));
     for (unsigned int q = 0; q < q_face.size(); ++q)
       {
         if ((fe_face.quadrature_point(q) - fe_other.quadrature_point(q) -

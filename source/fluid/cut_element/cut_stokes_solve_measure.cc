@@ -76,11 +76,13 @@ namespace Fidus
         Quadrature<dim> quadrature = q_cell;
         if (here.n_cut > 0)
           {
-            generator->generate(CutLevelSet<dim>(cell->vertex(0),
-                                                 cell->extent_in_direction(0),
-                                                 P.center,
-                                                 P.radius),
-                                unit_box);
+            generator->generate(
+              CutLevelSet<dim>(cell->vertex(0),
+                               cell->vertex(
+                                 GeometryInfo<dim>::vertices_per_cell - 1),
+                               P.center,
+                               P.radius),
+              unit_box);
             quadrature = generator->get_outside_quadrature();
           }
         if (quadrature.size() > 0)
@@ -140,7 +142,7 @@ namespace Fidus
                                                          q_surface,
                                                          surface_flags);
     fe_surface.reinit(cell);
-    const double gamma = s.nitsche * eta / cell->extent_in_direction(0);
+    const double gamma = s.nitsche * eta / CutMesh<dim>::shortest_side(cell);
     for (unsigned int q = 0; q < q_surface.size(); ++q)
       {
         const Tensor<1, dim>    n = -fe_surface.normal_vector(q);

@@ -23,8 +23,9 @@ namespace Fidus
    * particles, which the contact models allow, are seen by its fluid with
    * radii reduced until every gap is the minimum gap.
    *
-   * The box may have any size whose sides are whole multiples of the
-   * shortest (as the fictitious domain's coarse mesh): Stokes flow is
+   * The box may have any size (CutMesh divides it into coarse cells of
+   * about the shortest side, cubes where a side is a whole multiple of
+   * it): Stokes flow is
    * invariant under translation and scaling, so the solver works in the
    * box shifted to the origin and scaled by the shortest side (velocities
    * scale with the length, forces with its power dim - 1, stresslets with
@@ -109,8 +110,8 @@ namespace Fidus
 
     /// The solver's length unit (the box's shortest side) and the box in
     /// it.
-    double                    unit = 1.;
-    std::vector<unsigned int> box_cells;
+    double              unit = 1.;
+    std::vector<double> box_sides;
 
     /// Stress, cells and unknowns of the last solve, and its shear rate.
     Stress             last_stress;

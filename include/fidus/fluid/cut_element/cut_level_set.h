@@ -11,24 +11,26 @@ namespace Fidus
   using namespace dealii;
 
   /**
-   * The level set psi(xi) = |lower + h xi - X| - a of a ball on the
-   * reference cell of an axis-parallel cell of size h (negative in the
-   * ball). The cut quadratures of CutStokesInclusion are generated in
-   * reference coordinates, where FEValues wants them, from this exact
-   * sphere: its value, gradient and Hessian, which
+   * The level set psi(xi) = |lower + H xi - X| - a of a ball on the
+   * reference cell of an axis-parallel cell of sides H = diag(h_0, ...)
+   * (negative in the ball; in the reference cell of a cell that is not a
+   * cube the ball is an ellipsoid, which the quadrature generator takes as
+   * any other smooth level set). The cut quadratures of CutStokesInclusion are
+   * generated in reference coordinates, where FEValues wants them, from this
+   * exact sphere: its value, gradient and Hessian, which
    * NonMatching::QuadratureGenerator needs.
    */
   template <int dim>
   class CutLevelSet : public Function<dim>
   {
   public:
-    /// The cell's lower corner @p lower and size @p h; the ball.
+    /// The cell's lower and upper corners; the ball.
     CutLevelSet(const Point<dim> &lower,
-                const double      h,
+                const Point<dim> &upper,
                 const Point<dim> &center,
                 const double      radius)
       : lower(lower)
-      , h(h)
+      , h(upper - lower)
       , center(center)
       , radius(radius)
     {}
@@ -44,8 +46,12 @@ namespace Fidus
     Tensor<1, dim>
     gradient(const Point<dim> &xi, const unsigned int = 0) const override
     {
-      const Tensor<1, dim> r = real(xi) - center;
-      return h * r / r.norm();
+      const Tensor<1, dim> r    = real(xi) - center;
+      const double         norm = r.norm();
+      Tensor<1, dim>       g;
+      for (unsigned int d = 0; d < dim; ++d)
+        g[d] = h[d] * r[d] / norm;
+      return g;
     }
 
     /// Its Hessian with respect to @p xi.
@@ -57,7 +63,8 @@ namespace Fidus
       SymmetricTensor<2, dim> H;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = i; j < dim; ++j)
-          H[i][j] = h * h * ((i == j ? 1. : 0.) - r[i] * r[j] / (d * d)) / d;
+          H[i][j] =
+            h[i] * h[j] * ((i == j ? 1. : 0.) - r[i] * r[j] / (d * d)) / d;
       return H;
     }
 
@@ -67,14 +74,14 @@ namespace Fidus
     {
       Point<dim> x = lower;
       for (unsigned int d = 0; d < dim; ++d)
-        x[d] += h * xi[d];
+        x[d] += h[d] * xi[d];
       return x;
     }
 
-    const Point<dim> lower;
-    const double     h;
-    const Point<dim> center;
-    const double     radius;
+    const Point<dim>     lower;
+    const Tensor<1, dim> h;
+    const Point<dim>     center;
+    const double         radius;
   };
 } // namespace Fidus
 

@@ -1,6 +1,7 @@
 #ifndef fidus_fluid_cut_mesh_h
 #define fidus_fluid_cut_mesh_h
 
+#include <algorithm>
 #include <array>
 #include <deal.II/base/point.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -13,8 +14,12 @@ namespace Fidus
   using namespace dealii;
 
   /**
-   * The mesh of CutStokesInclusion: the box [0, n_0] x ... of unit cells
-   * (Settings::box_cells; the unit box by default), refined in bands around
+   * The mesh of CutStokesInclusion: the box [0, L_0] x ... (Settings::
+   * box_sides; the unit box by default) divided into coarse cells of about
+   * unit size (round(L_d) along axis d, so of sides in [0.75, 1.5): cubes
+   * when every side is a whole number, otherwise boxes whose sides differ
+   * by less than a factor 2),
+   * refined in bands around
    * the particle surfaces and in the thin gaps between them, and where
    * each of its cells lies relative to the particles (inside one, cut by
    * one surface, or in the fluid).
@@ -51,11 +56,11 @@ namespace Fidus
     /// How the mesh is refined.
     struct Settings
     {
-      /// Global refinement of the box's unit cells.
+      /// Global refinement of the box's coarse cells.
       unsigned int global_level = 4;
-      /// The box [0, n_0] x ... x [0, n_{dim-1}] as its numbers of unit
-      /// cells along each axis; empty: the unit box.
-      std::vector<unsigned int> box_cells;
+      /// The box [0, L_0] x ... x [0, L_{dim-1}], every side at least 1
+      /// (the shortest side is the length unit); empty: the unit box.
+      std::vector<double> box_sides;
       /// Further levels in a band around the particle surfaces.
       unsigned int band_levels = 0;
       /// Width of that band in cells of the level being refined.
@@ -133,16 +138,47 @@ namespace Fidus
     /// Refinement flags set for thin gaps, and for matching periodic faces.
     unsigned int n_gap_refinements = 0, n_periodic_refinements = 0;
 
-    /// The box's side along axis @p d (its number of unit cells).
+    /// The box's side along axis @p d.
     double
     side(const unsigned int d) const
     {
       return sides[d];
     }
 
+    /**
+     * A cell's size h in the penalties and inverse estimates of the
+     * formulation (Nitsche's term): its shortest side. Every cell is a cube
+     * when the box's sides are whole
+     * numbers; otherwise it is a box whose sides differ by less than a
+     * factor 2, and the shortest side is the one the inverse estimates
+     * see.
+     */
+    template <typename CellIterator>
+    static double
+    shortest_side(const CellIterator &cell)
+    {
+      double h = cell->extent_in_direction(0);
+      for (unsigned int d = 1; d < dim; ++d)
+        h = std::min(h, cell->extent_in_direction(d));
+      return h;
+    }
+
+    /// A cell's longest side: the reach of the refinement rules (bands,
+    /// gaps) in cells, so that a rule gives at least its cells along every
+    /// axis.
+    template <typename CellIterator>
+    static double
+    longest_side(const CellIterator &cell)
+    {
+      double h = cell->extent_in_direction(0);
+      for (unsigned int d = 1; d < dim; ++d)
+        h = std::max(h, cell->extent_in_direction(d));
+      return h;
+    }
+
   private:
-    /// The box's sides.
-    std::array<double, dim>   sides;
+    /// The box's sides, and the sides of its coarse cells.
+    std::array<double, dim>   sides, coarse;
     Triangulation<dim>        triangulation;
     std::vector<Ball>         balls;
     std::vector<Placement>    placements;

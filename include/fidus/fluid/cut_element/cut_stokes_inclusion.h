@@ -42,8 +42,8 @@ namespace Fidus
    * sliding walls, the walls y = 0, H take the shear's velocity and the
    * other axes are periodic (CutMesh matches the faces cell for cell).
    * Stokes flow is invariant under translation and scaling, so a box of
-   * any size whose sides are whole multiples of the shortest is solved as
-   * this one (CutElementModel scales it).
+   * any size is solved with its shortest side as the length unit
+   * (CutElementModel scales it).
    *
    * It solves one serial system, on a mesh built for the particles given:
    * with a sparse direct solver in 2D, and iteratively
@@ -134,11 +134,11 @@ namespace Fidus
       double shear_rate = 1.;
       /// Fluid viscosity.
       double viscosity = 1.;
-      /// The box [0, n_0] x ... x [0, n_{dim-1}] as its numbers of unit
-      /// cells along each axis; empty: the unit box (which the exact
-      /// inclusion needs).
-      std::vector<unsigned int> box_cells;
-      /// Global refinement of the box's unit cells.
+      /// The box [0, L_0] x ... x [0, L_{dim-1}], every side at least 1
+      /// (the shortest side is the length unit; CutMesh divides it into
+      /// coarse cells of about unit size); empty: the unit box.
+      std::vector<double> box_sides;
+      /// Global refinement of the box's coarse cells.
       unsigned int global_level = 4;
       /// Further levels in a band around the particle surface (the band
       /// reaches band_cells cells of each new level beyond the surface, so
