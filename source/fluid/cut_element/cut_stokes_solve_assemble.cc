@@ -438,27 +438,32 @@ namespace Fidus
           full_cells.emplace(cell->level(),
                              std::make_pair(local, copy.local_pressure));
         }
-    // This rank's share of the fluid cells, cut and full each dealt round
-    // robin (all of them on one rank).
-    // With K's velocity rows split among the ranks, also the cells outside
-    // the share that write this rank's rows (those only for them).
+    // This rank's share of the fluid cells (all of them on one rank): with
+    // K's velocity rows split among the ranks, the cells whose first
+    // unknown (a velocity: the element numbers a vertex's velocities
+    // first) has its row here, and besides them the cells
+    // that write this rank's rows (for those only), so that a cell is
+    // integrated by the ranks whose rows it writes and by no other; without
+    // the split (the direct solver), cut and full cells each dealt round
+    // robin.
     std::vector<std::pair<cell_iterator, bool>> cut;
     std::vector<cell_iterator>                  full;
     std::vector<bool>                           full_share;
     unsigned int                                n_cut = 0, n_full = 0;
     std::vector<types::global_dof_index>        cell_dofs(n_local);
-    const auto held = [&](const cell_iterator &cell) {
-      if (!split_rows)
-        return false;
-      cell->get_dof_indices(cell_dofs);
-      return writes_held_rows(cell_dofs);
-    };
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->active_fe_index() == 0)
         {
-          const bool is_cut = placed(cell).n_cut > 0;
-          const bool share  = mine(is_cut ? n_cut++ : n_full++);
-          if (!share && !held(cell))
+          const bool         is_cut = placed(cell).n_cut > 0;
+          const unsigned int k      = is_cut ? n_cut++ : n_full++;
+          bool               share = !split_rows && mine(k), held = false;
+          if (split_rows)
+            {
+              cell->get_dof_indices(cell_dofs);
+              share = blocks->owns_velocity_row(cell_dofs[0]);
+              held  = share || writes_held_rows(cell_dofs);
+            }
+          if (!share && !held)
             continue;
           if (is_cut)
             cut.emplace_back(cell, share);
@@ -716,16 +721,16 @@ namespace Fidus
     FaceScratch    scratch(*this);
     FaceCopy       copy;
     Vector<double> face_rhs;
-    // This rank's share of the faces, dealt round robin.
-    // With K's velocity rows split, also the faces outside the share that
-    // write this rank's rows (those only for them).
+    // This rank's share of the faces, as of the cells (assemble_cells()):
+    // with K's velocity rows split, the faces whose first cell's first
+    // unknown has its row here, and besides them the faces that write this
+    // rank's rows (for those only); without the split, dealt round robin.
     std::vector<std::pair<const GhostFace *, bool>> share;
     std::vector<types::global_dof_index>            dofs(n_local), both;
     for (unsigned int k = 0; k < ghost_faces.size(); ++k)
       {
-        const bool in_share = mine(k);
-        bool       held     = false;
-        if (!in_share && split_rows)
+        bool in_share = !split_rows && mine(k), held = false;
+        if (split_rows)
           {
             both.clear();
             for (const auto &cell :
@@ -734,7 +739,8 @@ namespace Fidus
                 cell->get_dof_indices(dofs);
                 both.insert(both.end(), dofs.begin(), dofs.end());
               }
-            held = writes_held_rows(both);
+            in_share = blocks->owns_velocity_row(both[0]);
+            held     = !in_share && writes_held_rows(both);
           }
         if (in_share || held)
           share.emplace_back(&ghost_faces[k], in_share);
