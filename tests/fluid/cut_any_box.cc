@@ -23,7 +23,7 @@
 //   the box 1.2 x 1 (one coarse cell 1.2 wide) and 2.4 x 1 (two of them)
 //   with the disc and its copy one period along, on uniform meshes (the
 //   2.4 box's mesh is the 1.2 box's twice), both copies move as the
-//   original to 1e-9 of its speed (measured 1.7e-13);
+//   original to 1e-9 of its speed (measured 3e-13);
 // - a side below 1 (the length unit is the shortest side) is refused.
 
 #include "../fidus_test.h"

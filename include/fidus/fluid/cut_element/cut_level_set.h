@@ -46,11 +46,13 @@ namespace Fidus
     Tensor<1, dim>
     gradient(const Point<dim> &xi, const unsigned int = 0) const override
     {
-      const Tensor<1, dim> r    = real(xi) - center;
-      const double         norm = r.norm();
-      Tensor<1, dim>       g;
+      const Tensor<1, dim> r = real(xi) - center;
+      // Times the inverse of |r|, as deal.II divides a tensor by a number
+      // (a cubic cell's quadratures are then those of a single size h).
+      const double   inverse = 1. / r.norm();
+      Tensor<1, dim> g;
       for (unsigned int d = 0; d < dim; ++d)
-        g[d] = h[d] * r[d] / norm;
+        g[d] = h[d] * r[d] * inverse;
       return g;
     }
 
