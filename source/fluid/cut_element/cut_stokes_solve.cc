@@ -356,13 +356,16 @@ namespace Fidus
       add_rigid({p});
     for (const auto &c : s.couplings)
       add_rigid(c.owners);
-    elements.build(sparsity);
-    result.n_entries = sparsity.n_nonzero_elements();
+    // With K's rows split, a rank keeps of the velocity rows it does not
+    // hold their pressure columns only (Bᵀ, whole on every rank): K's
+    // entries there, most of the system, are not built.
+    elements.build(sparsity, velocity_rows_not_held(), is_pressure);
+    count_entries();
   }
 
   template <int dim>
   void
-  CutStokesSolve<dim>::setup_system()
+  CutStokesSolve<dim>::choose_solver()
   {
     const IndexSet pressure_dofs =
       DoFTools::extract_dofs(dof_handler,
@@ -370,18 +373,92 @@ namespace Fidus
     is_pressure.assign(n_total, false);
     for (const auto i : pressure_dofs)
       is_pressure[i] = true;
+    iterative = uses_iterative_solver();
     // Between sliding walls, the unconstrained rows of the walls too: the
     // walls' stress is the residual of their DoFs' rows, which the
     // constrained matrix no longer has.
     if (periodic)
+      make_wall_rows();
+    // On more ranks the iterative solver with the multigrid splits K's
+    // rows among them, each rank holding a range (K numbers the velocities
+    // in the system's order, then the rigid unknowns), and the rigid rows,
+    // Bᵀ, B and P whole (summed over the ranks).
+    split_rows =
+      iterative &&
+      s.velocity_preconditioner == VelocityPreconditioner::multigrid &&
+      n_ranks > 1;
+    if (split_rows)
       {
-        make_wall_rows();
+        const unsigned int n_k =
+          n_total - std::count(is_pressure.begin(), is_pressure.end(), true);
+        k_first = std::uint64_t(n_k) * this_rank / n_ranks;
+        k_end   = std::uint64_t(n_k) * (this_rank + 1) / n_ranks;
+      }
+  }
+
+  template <int dim>
+  std::vector<bool>
+  CutStokesSolve<dim>::velocity_rows_not_held() const
+  {
+    std::vector<bool> not_held;
+    if (!split_rows)
+      return not_held;
+    not_held.assign(n_total, false);
+    unsigned int k = 0;
+    for (unsigned int i = 0; i < n_fluid; ++i)
+      if (!is_pressure[i])
+        {
+          // The walls' rows are read whole (make_wall_pattern()).
+          not_held[i] =
+            (k < k_first || k >= k_end) && !(periodic && wall_rows[i]);
+          ++k;
+        }
+    return not_held;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::count_entries()
+  {
+    result.n_entries = sparsity.n_nonzero_elements();
+    if (!split_rows)
+      return;
+    // The whole system's entries, as one rank would hold them: K's in this
+    // rank's velocity rows, summed over the ranks, and the rest (the
+    // velocity rows' pressure columns, the pressure and rigid rows), which
+    // every rank holds alike.
+    std::uint64_t own = 0, shared = 0;
+    unsigned int  k = 0;
+    for (unsigned int i = 0; i < n_total; ++i)
+      {
+        const bool velocity = i < n_fluid && !is_pressure[i];
+        const bool in_range = velocity && k >= k_first && k < k_end;
+        k += velocity ? 1 : 0;
+        for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
+          {
+            if (!velocity || is_pressure[it->column()])
+              ++shared;
+            else if (in_range)
+              ++own;
+          }
+      }
+    result.n_entries = Utilities::MPI::sum(own, s.communicator) + shared;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::setup_system()
+  {
+    // Between sliding walls, the walls' unconstrained rows
+    // (choose_solver()).
+    if (periodic)
+      {
+        make_wall_pattern();
         unconstrained.reinit(wall_sparsity);
       }
     // The iterative solver with the multigrid keeps the system as its
     // blocks: assembled into them, it is never held whole (the system and
     // its blocks side by side were the solve's peak).
-    iterative = uses_iterative_solver();
     if (iterative &&
         s.velocity_preconditioner == VelocityPreconditioner::multigrid)
       {
@@ -389,17 +466,8 @@ namespace Fidus
         for (unsigned int i = 0; i < n_fluid; ++i)
           kind[i] = is_pressure[i] ? 1 : 0;
         blocks = std::make_unique<CutSystemBlocks>();
-        // On more ranks each holds its range of K's velocity rows only
-        // (and the rigid rows, Bᵀ, B and P whole, summed over the ranks).
-        split_rows = n_ranks > 1;
         if (split_rows)
-          {
-            const unsigned int n_k =
-              n_total - std::count(kind.begin(), kind.end(), (unsigned char)1);
-            k_first = std::uint64_t(n_k) * this_rank / n_ranks;
-            k_end   = std::uint64_t(n_k) * (this_rank + 1) / n_ranks;
-            blocks->reinit(sparsity, kind, k_first, k_end);
-          }
+          blocks->reinit(sparsity, kind, k_first, k_end);
         else
           blocks->reinit(sparsity, kind);
         sparsity.reinit(0, 0, 0);

@@ -117,6 +117,7 @@ namespace Fidus
       setup_dofs_and_constraints();
       check_memory(false);
       find_ghost_penalty_faces();
+      choose_solver();
       make_sparsity_pattern();
       // The pattern's scratch is freed in many small blocks.
       MemoryUsage::release_free_memory();
@@ -227,10 +228,24 @@ namespace Fidus
     void
     find_ghost_penalty_faces();
 
+    /// Which unknowns are pressures, whether the solve iterates, and with
+    /// K's rows split among the ranks (#split_rows) this rank's range.
+    void
+    choose_solver();
+
+    /// With K's rows split: the velocity rows this rank does not hold
+    /// (flagged, by system index); empty otherwise.
+    std::vector<bool>
+    velocity_rows_not_held() const;
+
     /// The sparsity pattern of the fluid, rigid and ghost-penalty
-    /// couplings.
+    /// couplings (with K's rows split, of this rank's K rows only).
     void
     make_sparsity_pattern();
+
+    /// Result::n_entries: the whole system's, also with K's rows split.
+    void
+    count_entries();
 
     /// Size the matrices (the unconstrained one between sliding walls, the
     /// pressure mass matrix for the iterative solver), the vectors and the
@@ -279,12 +294,16 @@ namespace Fidus
     void
     wall_stress();
 
-    /// For sliding walls, wall_phi, wall_rows and the pattern of the
-    /// unconstrained matrix's rows that wall_stress() reads (a small part
-    /// of the system's: a whole unconstrained copy was a fifth of a dense
-    /// suspension's peak memory).
+    /// For sliding walls, wall_phi and wall_rows: the unconstrained
+    /// matrix's rows that wall_stress() reads.
     void
     make_wall_rows();
+
+    /// Their pattern, from the system's (a small part of it: a whole
+    /// unconstrained copy was a fifth of a dense suspension's peak
+    /// memory).
+    void
+    make_wall_pattern();
 
     /// For the exact inclusion, the errors of the particle's motion and
     /// stresslet.

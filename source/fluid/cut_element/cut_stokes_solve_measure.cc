@@ -203,8 +203,15 @@ namespace Fidus
             if (component[i] != 0.)
               wall_rows[i] = true;
         }
-    // Those rows of the system's pattern (which holds the unconstrained
-    // entries); the other rows get their diagonal alone.
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::make_wall_pattern()
+  {
+    // The wall rows of the system's pattern (which holds the unconstrained
+    // entries, and these rows whole on every rank); the other rows get
+    // their diagonal alone.
     wall_sparsity
       .fill(n_total, n_total, [&](const unsigned int i, const auto &f) {
         if (wall_rows[i])
@@ -322,6 +329,8 @@ namespace Fidus
   template void
   CutStokesSolve<2>::measure_solution();
   template void
+  CutStokesSolve<2>::make_wall_pattern();
+  template void
   CutStokesSolve<2>::wall_stress();
   template void
   CutStokesSolve<2>::make_wall_rows();
@@ -337,6 +346,8 @@ namespace Fidus
   CutStokesSolve<3>::read_rigid_motion();
   template void
   CutStokesSolve<3>::measure_solution();
+  template void
+  CutStokesSolve<3>::make_wall_pattern();
   template void
   CutStokesSolve<3>::wall_stress();
   template void

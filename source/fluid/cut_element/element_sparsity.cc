@@ -36,8 +36,13 @@ namespace Fidus
   }
 
   void
-  ElementSparsity::build(RowPattern &pattern) const
+  ElementSparsity::build(RowPattern              &pattern,
+                         const std::vector<bool> &partial_rows,
+                         const std::vector<bool> &kept_columns) const
   {
+    AssertThrow(partial_rows.empty() ||
+                  (partial_rows.size() == n && kept_columns.size() == n),
+                ExcDimensionMismatch(partial_rows.size(), n));
     const std::size_t n_elements = (starts.size() - 1) / 3;
     const auto        list = [&](const std::size_t e, const unsigned int k) {
       return std::make_pair(columns.data() + starts[3 * e + k],
@@ -116,11 +121,15 @@ namespace Fidus
                         for (unsigned int row = first; row < last; ++row)
                           {
                             std::size_t to = fill ? col_start[row] : 0;
+                            const bool  partial =
+                              !partial_rows.empty() && partial_rows[row];
                             row_lists(row, [&](const auto &range) {
                               for (auto p = range.first; p != range.second; ++p)
                                 if (seen[*p] != row)
                                   {
                                     seen[*p] = row;
+                                    if (partial && !kept_columns[*p])
+                                      continue;
                                     if (fill)
                                       row_columns[to] = *p;
                                     ++to;

@@ -39,9 +39,17 @@ namespace Fidus
     void
     add_element(const std::vector<types::global_dof_index> &dofs);
 
-    /// Fill @p pattern with the couplings of all elements added.
+    /**
+     * Fill @p pattern with the couplings of all elements added. The rows
+     * flagged in @p partial_rows (none if empty) keep only the columns
+     * flagged in @p kept_columns, and their diagonal: a rank that holds
+     * some rows of a block whole and of the others only their couplings
+     * to another block builds no more than it keeps.
+     */
     void
-    build(RowPattern &pattern) const;
+    build(RowPattern              &pattern,
+          const std::vector<bool> &partial_rows = {},
+          const std::vector<bool> &kept_columns = {}) const;
 
   private:
     const unsigned int               n;
