@@ -20,7 +20,11 @@
 #     and between sliding walls (periodic faces, the walls' stress from
 #     rows summed over the ranks' shares): 2 ranks against 1 within 1e-8;
 #  5. 3D with 'auto' on 2 ranks (which iterates, every rank holding the
-#     whole system) is warned about, once; with 'direct' set, not.
+#     whole system) is warned about, once; with 'direct' set, not;
+#  6. the matrix entries fidus reports (verbose) are the whole system's on
+#     2 ranks as on 1, between sliding walls with the iterative solver,
+#     although each rank builds K's entries of its own rows only (and the
+#     walls' rows whole).
 # Usage: run_cut_ranks_test.sh path/to/fidus path/to/repo
 . "$(dirname "${BASH_SOURCE[0]}")/driver_test_lib.sh" "$1" "$2"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
@@ -116,6 +120,16 @@ status=$?
 check "3D 'direct' on 2 ranks runs" [ $status -eq 0 ]
 check "and does not warn" \
   [ "$(grep -c "warning: the cut element runs on" sphere-direct.log)" = 0 ]
+
+# 6. The entries reported, solve by solve, on 1 and 2 ranks.
+for ranks in 1 2; do
+  sed -e 's/set Verbosity = quiet/set Verbosity = verbose/' \
+      -e "s|$work/walls3d\$|$work/entries-$ranks|" walls3d.prm > entries-$ranks.prm
+  mpirun -np $ranks "$fidus" entries-$ranks.prm > entries-$ranks.log 2>&1
+  grep -o '([0-9]* matrix entries)' entries-$ranks.log > entries-$ranks.txt
+done
+check "the whole system's entries on 2 ranks as on 1: $(head -1 entries-1.txt | tr -d '()')" \
+  bash -c '[ -s entries-1.txt ] && cmp -s entries-1.txt entries-2.txt'
 
 echo "$passes passed, $failures failed"
 [ $failures -eq 0 ]

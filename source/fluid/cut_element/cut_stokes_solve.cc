@@ -276,8 +276,8 @@ namespace Fidus
     // every rank (the mesh, the system and its copies) and the factor,
     // the other half, is shared (2D and 3D, 1 to 3 ranks: 0.43-0.56); the
     // iterative solver's ranks share the velocity block and its multigrid
-    // and hold the rest whole (2 ranks: 0.78 of one rank's peak for one
-    // sphere, 0.87 for 37 spheres).
+    // and their pattern, and hold the rest whole (2 ranks: 0.81 of one
+    // rank's peak for one sphere, 0.83 for 37 spheres).
     const double needed =
       per_unit * units * (n_ranks == 1 ? 1. : 0.5 + 0.5 / n_ranks);
     const MemoryBudget budget(s.memory_limit, s.communicator);
