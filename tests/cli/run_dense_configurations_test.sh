@@ -49,7 +49,14 @@ PRM
 
 "$python" "$driver" scene.prm scene.prm --fidus "$fidus" --levels 5 \
   --strains 0.04,0.08,0.02 --pair-gap 0.5 --work runs > table.txt 2> err.txt
-check "driver runs" test $? -eq 0
+status=$?
+check "driver runs" test $status -eq 0
+# What failed, if it did (the driver names the run; fidus's own message is
+# in that run's stderr.txt).
+if [ $status -ne 0 ]; then
+  cat err.txt
+  cat runs/*/stderr.txt runs/*/*/stderr.txt 2> /dev/null | tail -20
+fi
 
 cell() {  # cell N: the N-th cell of the row of the prm's settings
   grep "^| prm's settings | 5 |" table.txt |
