@@ -393,6 +393,14 @@ namespace Fidus
           n_total - std::count(is_pressure.begin(), is_pressure.end(), true);
         k_first = std::uint64_t(n_k) * this_rank / n_ranks;
         k_end   = std::uint64_t(n_k) * (this_rank + 1) / n_ranks;
+        held_velocity_rows.assign(n_total, false);
+        unsigned int k = 0;
+        for (unsigned int i = 0; i < n_fluid; ++i)
+          if (!is_pressure[i])
+            {
+              held_velocity_rows[i] = k >= k_first && k < k_end;
+              ++k;
+            }
       }
   }
 
@@ -404,15 +412,10 @@ namespace Fidus
     if (!split_rows)
       return not_held;
     not_held.assign(n_total, false);
-    unsigned int k = 0;
+    // The walls' rows are read whole (make_wall_pattern()).
     for (unsigned int i = 0; i < n_fluid; ++i)
-      if (!is_pressure[i])
-        {
-          // The walls' rows are read whole (make_wall_pattern()).
-          not_held[i] =
-            (k < k_first || k >= k_end) && !(periodic && wall_rows[i]);
-          ++k;
-        }
+      not_held[i] = !is_pressure[i] && !held_velocity_rows[i] &&
+                    !(periodic && wall_rows[i]);
     return not_held;
   }
 
@@ -428,17 +431,14 @@ namespace Fidus
     // velocity rows' pressure columns, the pressure and rigid rows), which
     // every rank holds alike.
     std::uint64_t own = 0, shared = 0;
-    unsigned int  k = 0;
     for (unsigned int i = 0; i < n_total; ++i)
       {
         const bool velocity = i < n_fluid && !is_pressure[i];
-        const bool in_range = velocity && k >= k_first && k < k_end;
-        k += velocity ? 1 : 0;
         for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
           {
             if (!velocity || is_pressure[it->column()])
               ++shared;
-            else if (in_range)
+            else if (held_velocity_rows[i])
               ++own;
           }
       }

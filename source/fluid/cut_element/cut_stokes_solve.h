@@ -639,6 +639,8 @@ namespace Fidus
     bool           split_rows = false;
     unsigned int   k_first = 0, k_end = 0;
     Vector<double> velocity_diagonal;
+    /// With the split, the velocity rows (by system index) in that range.
+    std::vector<bool> held_velocity_rows;
     /// The pressure mass matrix over the fluid (iterative solver only).
     RowPattern           mass_sparsity;
     SparseMatrix<double> pressure_mass;
