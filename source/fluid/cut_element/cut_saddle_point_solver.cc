@@ -556,7 +556,11 @@ namespace Fidus
     build_pressure_schur(pressure_mass, layout);
     pressure_jacobi.initialize(pressure_schur);
     build_gap_laplacian(layout);
-    mean                        = layout.pressure_mean;
+    mean = layout.pressure_mean;
+    const bool split_all =
+      multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1;
+    if (split_all)
+      split_blocks(layout);
     statistics.pressure_seconds = lap();
     // Everything read from the system is in the blocks now.
     if (multigrid && release)
@@ -566,7 +570,7 @@ namespace Fidus
     // motions about the box's centre as near-null space: the viscous
     // operator does not see them, and translations alone leave the coarse
     // spaces without rotations.
-    if (multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1)
+    if (split_all)
       split_velocity_block(layout);
     else if (multigrid)
       multigrid->initialize(velocity_matrix, velocity, n_v);
@@ -600,6 +604,14 @@ namespace Fidus
   CutSaddlePointSolver<dim>::system_vmult(Vector<double>       &dst,
                                           const Vector<double> &src) const
   {
+    if (bt_rows)
+      {
+        PartsVector parts = make_parts(), product = make_parts();
+        to_parts(src, parts);
+        split_system_vmult(product, parts);
+        from_parts(product, dst);
+        return;
+      }
     if (!multigrid)
       matrix->vmult(dst, src);
     else
@@ -612,7 +624,7 @@ namespace Fidus
           x_k[n_u + k] = src[rigid[k]];
         for (unsigned int k = 0; k < pressure.size(); ++k)
           x_p[k] = src[pressure[k]];
-        k_vmult(y_k, x_k);
+        velocity_matrix.vmult(y_k, x_k);
         coupling.vmult_add(y_k, x_p);
         divergence.vmult(y_p, x_k);
         pressure_block.vmult_add(y_p, x_p);
@@ -635,6 +647,14 @@ namespace Fidus
   CutSaddlePointSolver<dim>::vmult(Vector<double>       &dst,
                                    const Vector<double> &src) const
   {
+    if (bt_rows)
+      {
+        PartsVector parts = make_parts(), product = make_parts();
+        to_parts(src, parts);
+        split_vmult(product, parts);
+        from_parts(product, dst);
+        return;
+      }
     // z_p = -S^-1 r_p, then r_K - B^T z_p.
     for (unsigned int k = 0; k < pressure.size(); ++k)
       r_p[k] = src[pressure[k]];
@@ -650,7 +670,7 @@ namespace Fidus
         // K^-1 by one V-cycle on K.
         for (unsigned int k = 0; k < rigid.size(); ++k)
           r_u[n_u + k] = src[rigid[k]] - coupling_product[n_u + k];
-        cycle(y_u, r_u);
+        multigrid->vmult(y_u, r_u);
         for (unsigned int k = 0; k < velocity.size(); ++k)
           dst[velocity[k]] = y_u[k];
         for (unsigned int k = 0; k < rigid.size(); ++k)
@@ -677,104 +697,6 @@ namespace Fidus
 
 
   template <int dim>
-  void
-  CutSaddlePointSolver<dim>::split_velocity_block(const Layout &layout)
-  {
-    // The rows this rank's K holds (the rigid rows, whole on every rank,
-    // go with the last range).
-    const MPI_Comm communicator = layout.communicator;
-    const IndexSet owned =
-      contiguous_range(layout.k_end - layout.k_first, communicator);
-    AssertThrow(owned.n_elements() == 0 ||
-                  owned.nth_index_in_set(0) == layout.k_first,
-                ExcMessage("The ranks' rows of K are not consecutive."));
-    const unsigned int first =
-      owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
-    k_rows = std::make_unique<DistributedRows<double>>();
-    k_rows->fill(
-      owned,
-      owned,
-      [&](const unsigned int k, const auto &f) {
-        for (auto it  = velocity_matrix.begin(first + k),
-                  end = velocity_matrix.end(first + k);
-             it != end;
-             ++it)
-          f(it->column(), it->value());
-      },
-      communicator);
-    // Every rank holds the whole block until here: now only its rows.
-    velocity_matrix.clear();
-    blocks->k_pattern.reinit(0, 0, 0);
-    k_in.reinit(owned, communicator);
-    k_out.reinit(owned, communicator);
-    multigrid->initialize(*k_rows, velocity, rigid.size());
-  }
-
-
-
-  template <int dim>
-  void
-  CutSaddlePointSolver<dim>::gather(
-    const LinearAlgebra::distributed::Vector<double> &part,
-    Vector<double>                                   &whole) const
-  {
-    whole                    = 0.;
-    const IndexSet    &owned = part.locally_owned_elements();
-    const unsigned int first =
-      owned.n_elements() > 0 ? owned.nth_index_in_set(0) : 0;
-    std::copy(part.begin(), part.end(), whole.begin() + first);
-    Utilities::MPI::sum(whole, part.get_mpi_communicator(), whole);
-  }
-
-
-
-  template <int dim>
-  void
-  CutSaddlePointSolver<dim>::take_held_rows(const Vector<double> &src) const
-  {
-    const unsigned int first = k_rows->first_row();
-    std::copy(src.begin() + first,
-              src.begin() + first + k_in.locally_owned_size(),
-              k_in.begin());
-  }
-
-
-
-  template <int dim>
-  void
-  CutSaddlePointSolver<dim>::k_vmult(Vector<double>       &dst,
-                                     const Vector<double> &src) const
-  {
-    if (!k_rows)
-      {
-        velocity_matrix.vmult(dst, src);
-        return;
-      }
-    take_held_rows(src);
-    k_rows->vmult(k_out, k_in);
-    gather(k_out, dst);
-  }
-
-
-
-  template <int dim>
-  void
-  CutSaddlePointSolver<dim>::cycle(Vector<double>       &dst,
-                                   const Vector<double> &src) const
-  {
-    if (!k_rows)
-      {
-        multigrid->vmult(dst, src);
-        return;
-      }
-    take_held_rows(src);
-    multigrid->vmult(k_out, k_in);
-    gather(k_out, dst);
-  }
-
-
-
-  template <int dim>
   typename CutSaddlePointSolver<dim>::Statistics
   CutSaddlePointSolver<dim>::solve(Vector<double>       &x,
                                    const Vector<double> &b,
@@ -782,6 +704,8 @@ namespace Fidus
                                    const unsigned int    max_iterations,
                                    const bool            from_x)
   {
+    if (bt_rows)
+      return solve_split(x, b, tolerance, max_iterations, from_x);
     Timer        timer;
     const System system{*this};
     const double b_norm       = b.l2_norm();

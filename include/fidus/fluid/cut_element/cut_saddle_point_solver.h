@@ -2,8 +2,10 @@
 #define fidus_fluid_cut_saddle_point_solver_h
 
 #include <Epetra_MultiVector.h>
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/point.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_block_vector.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -88,11 +90,12 @@ namespace Fidus
       /// complement's preconditioner, S^-1 ~ (M + C)^-1 + w L_gap^-1 (see
       /// build_gap_laplacian()); 0: the pressure mass alone.
       double gap_laplacian = 0.;
-      /// The ranks that share the solve, each holding the whole system:
-      /// with the multigrid, K and the multigrid's levels are split among
-      /// them by rows (each rank keeps its own), and every product with
-      /// them is summed over the ranks; FGMRES, the pressure side and the
-      /// couplings run on every rank alike.
+      /// The ranks that share the solve: with the multigrid, every block
+      /// and the multigrid's levels are split among them by rows (each
+      /// rank keeps its own: K's and B^T's in its range of K, B's, the
+      /// pressure block's and S's in a range of the pressures), and
+      /// FGMRES and the pressure side run on those ranges
+      /// (split_blocks()).
       MPI_Comm communicator = MPI_COMM_SELF;
       /// On more than one rank: the rows of K (velocities, then rigid
       /// unknowns) whose velocity rows this rank's K holds; the others are
@@ -238,29 +241,64 @@ namespace Fidus
     build_gap_laplacian(const Layout &layout);
 
     /// With the multigrid on more than one rank: K's rows split among
-    /// the ranks (K itself is freed once they are copied) and the vectors
-    /// on those rows; k_x, k_y the whole vectors they are gathered into.
+    /// the ranks (K itself is freed once they are copied), on which the
+    /// multigrid is built.
     void
     split_velocity_block(const Layout &layout);
     /// K's diagonal (every rank holds its own velocity rows only): from
     /// the ranks with the split, from K without.
     Vector<double> k_diagonal;
-    /// k_in = this rank's rows of the whole vector @p src.
+
+    /// A vector of the split solve: block 0 this rank's range of K's rows
+    /// (velocities, then rigid unknowns), block 1 its range of the
+    /// pressures.
+    using PartVector  = LinearAlgebra::distributed::Vector<double>;
+    using PartsVector = LinearAlgebra::distributed::BlockVector<double>;
+    /**
+     * With the split: B^T's rows with K's, B's, the pressure block's and
+     * S's by ranges of the pressures, the mean's part and S's inverse
+     * diagonal, copied from the whole blocks (which are freed), so that
+     * FGMRES and the pressure side run on this rank's rows only
+     * (solve_split()). The gap Laplacian's AMG stays whole on every rank.
+     */
     void
-    take_held_rows(const Vector<double> &src) const;
-    /// dst = K src (whole vectors), from the ranks' rows of K.
+    split_blocks(const Layout &layout);
+    /// A zero vector over this rank's ranges.
+    PartsVector
+    make_parts() const;
+    /// @p parts = this rank's entries of the whole @p whole.
     void
-    k_vmult(Vector<double> &dst, const Vector<double> &src) const;
-    /// dst = one V-cycle on src (whole vectors), on the ranks' rows.
+    to_parts(const Vector<double> &whole, PartsVector &parts) const;
+    /// The whole vector @p whole from every rank's @p parts (collective).
     void
-    cycle(Vector<double> &dst, const Vector<double> &src) const;
-    /// The whole vector @p whole from this rank's rows @p part, summed over
-    /// the ranks.
+    from_parts(const PartsVector &parts, Vector<double> &whole) const;
+    /// system_vmult() on the ranks' rows.
     void
-    gather(const LinearAlgebra::distributed::Vector<double> &part,
-           Vector<double>                                   &whole) const;
-    std::unique_ptr<DistributedRows<double>>           k_rows;
-    mutable LinearAlgebra::distributed::Vector<double> k_in, k_out;
+    split_system_vmult(PartsVector &dst, const PartsVector &src) const;
+    /// vmult() on the ranks' rows.
+    void
+    split_vmult(PartsVector &dst, const PartsVector &src) const;
+    /// apply_pressure_inverse() on the ranks' pressures.
+    void
+    split_pressure_inverse(PartVector &z, const PartVector &r) const;
+    /// solve() with the split.
+    Statistics
+                                             solve_split(Vector<double>       &x,
+                                                         const Vector<double> &b,
+                                                         const double          tolerance,
+                                                         const unsigned int    max_iterations,
+                                                         const bool            from_x);
+    std::unique_ptr<DistributedRows<double>> k_rows, bt_rows, b_rows, p_rows,
+      s_rows;
+    /// This rank's ranges of K's rows and of the pressures.
+    IndexSet k_owned, p_owned;
+    /// S's inverse diagonal and m, on this rank's pressures.
+    PartVector s_inverse_diagonal, mean_part;
+    /// This rank's constrained pressures (local indices) and their
+    /// diagonal in the system.
+    std::vector<unsigned int> own_constrained;
+    std::vector<double>       own_constrained_diagonal;
+    mutable PartVector        k_in;
 
     /// The system; nullptr when it came as blocks, and not read after the
     /// constructor with the multigrid.

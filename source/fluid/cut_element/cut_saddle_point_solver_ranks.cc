@@ -1,0 +1,390 @@
+// The cut element's iterative solve over more than one MPI rank: each rank
+// holds its range of K's rows (velocities, then rigid unknowns) with B^T's,
+// and a range of the pressures with B's, the pressure block's and the
+// pressure preconditioner's; FGMRES and the pressure side's CG run on
+// vectors of those ranges (doc/developer/architecture.md, "The cut element
+// over ranks").
+
+#include <deal.II/base/timer.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
+#include <sstream>
+#include <stdexcept>
+
+namespace Fidus
+{
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_velocity_block(const Layout &layout)
+  {
+    // K's rows this rank holds (the rigid rows go with the last range):
+    // split_blocks() set k_owned.
+    const MPI_Comm     communicator = layout.communicator;
+    const unsigned int first        = layout.k_first;
+    k_rows = std::make_unique<DistributedRows<double>>();
+    k_rows->fill(
+      k_owned,
+      k_owned,
+      [&](const unsigned int k, const auto &f) {
+        for (auto it  = velocity_matrix.begin(first + k),
+                  end = velocity_matrix.end(first + k);
+             it != end;
+             ++it)
+          f(it->column(), it->value());
+      },
+      communicator);
+    // Every rank holds the whole block until here: now only its rows.
+    velocity_matrix.clear();
+    blocks->k_pattern.reinit(0, 0, 0);
+    k_in.reinit(k_owned, communicator);
+    multigrid->initialize(*k_rows, velocity, rigid.size());
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_blocks(const Layout &layout)
+  {
+    const MPI_Comm     communicator = layout.communicator;
+    const unsigned int n_p          = pressure.size();
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator),
+                       rank    = Utilities::MPI::this_mpi_process(communicator);
+    k_owned = contiguous_range(layout.k_end - layout.k_first, communicator);
+    AssertThrow(k_owned.n_elements() == 0 ||
+                  k_owned.nth_index_in_set(0) == layout.k_first,
+                ExcMessage("The ranks' rows of K are not consecutive."));
+    // The pressures evenly by their number: the system numbers them among
+    // the velocities, so equal shares of each lie about alike in space.
+    const unsigned int p_first = std::uint64_t(n_p) * rank / n_ranks,
+                       p_end   = std::uint64_t(n_p) * (rank + 1) / n_ranks;
+    p_owned = contiguous_range(p_end - p_first, communicator);
+
+    // Each block's rows here, from the whole block (its columns already in
+    // the block's numbering; a square block's diagonal first, as fill()
+    // keeps it).
+    const auto rows_of = [&](const SparseMatrix<double> &whole,
+                             const unsigned int          first) {
+      return [&whole, first](const unsigned int k, const auto &f) {
+        for (auto it = whole.begin(first + k), end = whole.end(first + k);
+             it != end;
+             ++it)
+          f(it->column(), it->value());
+      };
+    };
+    const unsigned int k_first = layout.k_first;
+    bt_rows                    = std::make_unique<DistributedRows<double>>();
+    bt_rows->fill(k_owned, p_owned, rows_of(coupling, k_first), communicator);
+    b_rows = std::make_unique<DistributedRows<double>>();
+    b_rows->fill(p_owned, k_owned, rows_of(divergence, p_first), communicator);
+    p_rows = std::make_unique<DistributedRows<double>>();
+    p_rows->fill(p_owned,
+                 p_owned,
+                 rows_of(pressure_block, p_first),
+                 communicator);
+    s_rows = std::make_unique<DistributedRows<double>>();
+    s_rows->fill(p_owned,
+                 p_owned,
+                 rows_of(pressure_schur, p_first),
+                 communicator);
+
+    s_inverse_diagonal.reinit(p_owned, communicator);
+    for (unsigned int k = 0; k < p_end - p_first; ++k)
+      s_inverse_diagonal.local_element(k) = 1. / s_rows->diag_element(k);
+    for (unsigned int c = 0; c < constrained_pressures.size(); ++c)
+      if (constrained_pressures[c] >= p_first &&
+          constrained_pressures[c] < p_end)
+        {
+          own_constrained.push_back(constrained_pressures[c] - p_first);
+          own_constrained_diagonal.push_back(constrained_diagonal[c]);
+        }
+    if (mean.size() > 0)
+      {
+        // m lies on the pressures (the pressure mass's rows).
+        for (const unsigned int i : velocity)
+          AssertThrow(mean[i] == 0., ExcInternalError());
+        mean_part.reinit(p_owned, communicator);
+        for (unsigned int k = 0; k < p_end - p_first; ++k)
+          mean_part.local_element(k) = mean[pressure[p_first + k]];
+      }
+
+    // The whole blocks are read no more (the gap Laplacian, built before,
+    // has its own copy).
+    coupling.clear();
+    divergence.clear();
+    pressure_block.clear();
+    blocks->bt_pattern.reinit(0, 0, 0);
+    blocks->b_pattern.reinit(0, 0, 0);
+    blocks->p_pattern.reinit(0, 0, 0);
+    pressure_jacobi.clear();
+    pressure_schur.clear();
+    pressure_sparsity.reinit(0, 0, 0);
+  }
+
+
+
+  template <int dim>
+  typename CutSaddlePointSolver<dim>::PartsVector
+  CutSaddlePointSolver<dim>::make_parts() const
+  {
+    PartsVector parts(2);
+    parts.block(0).reinit(k_owned, k_rows->get_mpi_communicator());
+    parts.block(1).reinit(p_owned, k_rows->get_mpi_communicator());
+    parts.collect_sizes();
+    return parts;
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::to_parts(const Vector<double> &whole,
+                                      PartsVector          &parts) const
+  {
+    const unsigned int n_u = velocity.size();
+    const unsigned int k_first =
+      k_owned.n_elements() > 0 ? k_owned.nth_index_in_set(0) : 0;
+    const unsigned int p_first =
+      p_owned.n_elements() > 0 ? p_owned.nth_index_in_set(0) : 0;
+    for (unsigned int k = 0; k < k_owned.n_elements(); ++k)
+      {
+        const unsigned int j = k_first + k;
+        parts.block(0).local_element(k) =
+          whole[j < n_u ? velocity[j] : rigid[j - n_u]];
+      }
+    for (unsigned int k = 0; k < p_owned.n_elements(); ++k)
+      parts.block(1).local_element(k) = whole[pressure[p_first + k]];
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::from_parts(const PartsVector &parts,
+                                        Vector<double>    &whole) const
+  {
+    const unsigned int n_u = velocity.size();
+    const unsigned int k_first =
+      k_owned.n_elements() > 0 ? k_owned.nth_index_in_set(0) : 0;
+    const unsigned int p_first =
+      p_owned.n_elements() > 0 ? p_owned.nth_index_in_set(0) : 0;
+    whole = 0.;
+    for (unsigned int k = 0; k < k_owned.n_elements(); ++k)
+      {
+        const unsigned int j = k_first + k;
+        whole[j < n_u ? velocity[j] : rigid[j - n_u]] =
+          parts.block(0).local_element(k);
+      }
+    for (unsigned int k = 0; k < p_owned.n_elements(); ++k)
+      whole[pressure[p_first + k]] = parts.block(1).local_element(k);
+    Utilities::MPI::sum(whole, k_rows->get_mpi_communicator(), whole);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_system_vmult(PartsVector       &dst,
+                                                const PartsVector &src) const
+  {
+    // [K B^T; B P] [x_K; x_p], and the rank-one term that fixes the
+    // pressure's mean.
+    k_rows->vmult(dst.block(0), src.block(0));
+    bt_rows->vmult_add(dst.block(0), src.block(1));
+    b_rows->vmult(dst.block(1), src.block(0));
+    p_rows->vmult_add(dst.block(1), src.block(1));
+    if (mean_part.size() > 0)
+      dst.block(1).add(-(mean_part * src.block(1)), mean_part);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_pressure_inverse(PartVector       &z,
+                                                    const PartVector &r) const
+  {
+    // As apply_pressure_inverse(): CG with point Jacobi on S to 1e-2, the
+    // gap Laplacian's AMG (whole on every rank: its residual gathered),
+    // the constrained pressures exactly.
+    struct Jacobi
+    {
+      const PartVector &inverse_diagonal;
+      void
+      vmult(PartVector &dst, const PartVector &src) const
+      {
+        dst = src;
+        dst.scale(inverse_diagonal);
+      }
+    };
+    z = 0.;
+    SolverControl        control(200, 1e-2 * r.l2_norm(), false, false);
+    SolverCG<PartVector> cg(control);
+    try
+      {
+        cg.solve(*s_rows, z, r, Jacobi{s_inverse_diagonal});
+      }
+    catch (const SolverControl::NoConvergence &)
+      {}
+    if (!gap_pressures.empty())
+      {
+        const unsigned int p_first = r.get_partitioner()->local_range().first,
+                           p_end   = r.get_partitioner()->local_range().second;
+        r_g                        = 0.;
+        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
+          if (gap_pressures[k] >= p_first && gap_pressures[k] < p_end)
+            r_g[k] = r.local_element(gap_pressures[k] - p_first);
+        Utilities::MPI::sum(r_g, r.get_mpi_communicator(), r_g);
+        gap_amg.vmult(z_g, r_g);
+        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
+          if (gap_pressures[k] >= p_first && gap_pressures[k] < p_end)
+            z.local_element(gap_pressures[k] - p_first) += gap_weight * z_g[k];
+      }
+    z *= -1.;
+    for (unsigned int c = 0; c < own_constrained.size(); ++c)
+      z.local_element(own_constrained[c]) =
+        r.local_element(own_constrained[c]) / own_constrained_diagonal[c];
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_vmult(PartsVector       &dst,
+                                         const PartsVector &src) const
+  {
+    // z_p = -S^-1 r_p, then one V-cycle on r_K - B^T z_p.
+    split_pressure_inverse(dst.block(1), src.block(1));
+    bt_rows->vmult(k_in, dst.block(1));
+    k_in.sadd(-1., 1., src.block(0));
+    multigrid->vmult(dst.block(0), k_in);
+  }
+
+
+
+  template <int dim>
+  typename CutSaddlePointSolver<dim>::Statistics
+  CutSaddlePointSolver<dim>::solve_split(Vector<double>       &x,
+                                         const Vector<double> &b,
+                                         const double          tolerance,
+                                         const unsigned int    max_iterations,
+                                         const bool            from_x)
+  {
+    Timer timer;
+    // The system and the preconditioner as FGMRES multiplies by them.
+    struct Operator
+    {
+      const CutSaddlePointSolver &solver;
+      const bool                  system;
+      void
+      vmult(PartsVector &dst, const PartsVector &src) const
+      {
+        if (system)
+          solver.split_system_vmult(dst, src);
+        else
+          solver.split_vmult(dst, src);
+      }
+    };
+    const Operator system{*this, true}, preconditioner{*this, false};
+    PartsVector    x_parts = make_parts(), b_parts = make_parts();
+    to_parts(b, b_parts);
+    const double b_norm       = b_parts.l2_norm();
+    bool         start_from_x = from_x;
+    if (start_from_x)
+      {
+        to_parts(x, x_parts);
+        PartsVector r = make_parts();
+        system.vmult(r, x_parts);
+        r.sadd(-1., 1., b_parts);
+        statistics.initial_residual = r.l2_norm() / b_norm;
+        if (!(statistics.initial_residual < 1.))
+          start_from_x = false;
+      }
+    if (!start_from_x)
+      {
+        x_parts                     = 0.;
+        statistics.initial_residual = 1.;
+      }
+    // The basis as in solve().
+    SolverControl control(max_iterations, tolerance * b_norm, false, false);
+    SolverFGMRES<PartsVector> fgmres(
+      control,
+      typename SolverFGMRES<PartsVector>::AdditionalData(300));
+    try
+      {
+        fgmres.solve(system, x_parts, b_parts, preconditioner);
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        std::ostringstream message;
+        message << "CutSaddlePointSolver: FGMRES did not reach the relative "
+                   "residual "
+                << tolerance << " in " << max_iterations
+                << " iterations (reached " << e.last_residual / b_norm << ")";
+        throw std::runtime_error(message.str());
+      }
+    from_parts(x_parts, x);
+    statistics.iterations    = control.last_step();
+    statistics.solve_seconds = timer.wall_time();
+    return statistics;
+  }
+
+  // The members defined here, for both dimensions (the class itself is
+  // instantiated in cut_saddle_point_solver.cc).
+  template void
+  CutSaddlePointSolver<2>::split_velocity_block(const Layout &);
+  template void
+  CutSaddlePointSolver<2>::split_blocks(const Layout &);
+  template CutSaddlePointSolver<2>::PartsVector
+  CutSaddlePointSolver<2>::make_parts() const;
+  template void
+  CutSaddlePointSolver<2>::to_parts(const Vector<double> &,
+                                    PartsVector &) const;
+  template void
+  CutSaddlePointSolver<2>::from_parts(const PartsVector &,
+                                      Vector<double> &) const;
+  template void
+  CutSaddlePointSolver<2>::split_system_vmult(PartsVector &,
+                                              const PartsVector &) const;
+  template void
+  CutSaddlePointSolver<2>::split_pressure_inverse(PartVector &,
+                                                  const PartVector &) const;
+  template void
+  CutSaddlePointSolver<2>::split_vmult(PartsVector &,
+                                       const PartsVector &) const;
+  template CutSaddlePointSolver<2>::Statistics
+  CutSaddlePointSolver<2>::solve_split(Vector<double> &,
+                                       const Vector<double> &,
+                                       const double,
+                                       const unsigned int,
+                                       const bool);
+  template void
+  CutSaddlePointSolver<3>::split_velocity_block(const Layout &);
+  template void
+  CutSaddlePointSolver<3>::split_blocks(const Layout &);
+  template CutSaddlePointSolver<3>::PartsVector
+  CutSaddlePointSolver<3>::make_parts() const;
+  template void
+  CutSaddlePointSolver<3>::to_parts(const Vector<double> &,
+                                    PartsVector &) const;
+  template void
+  CutSaddlePointSolver<3>::from_parts(const PartsVector &,
+                                      Vector<double> &) const;
+  template void
+  CutSaddlePointSolver<3>::split_system_vmult(PartsVector &,
+                                              const PartsVector &) const;
+  template void
+  CutSaddlePointSolver<3>::split_pressure_inverse(PartVector &,
+                                                  const PartVector &) const;
+  template void
+  CutSaddlePointSolver<3>::split_vmult(PartsVector &,
+                                       const PartsVector &) const;
+  template CutSaddlePointSolver<3>::Statistics
+  CutSaddlePointSolver<3>::solve_split(Vector<double> &,
+                                       const Vector<double> &,
+                                       const double,
+                                       const unsigned int,
+                                       const bool);
+} // namespace Fidus
