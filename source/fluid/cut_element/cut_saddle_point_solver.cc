@@ -377,12 +377,10 @@ namespace Fidus
 
 
   template <int dim>
-  void
-  CutSaddlePointSolver<dim>::build_gap_laplacian(const Layout &layout)
+  std::vector<int>
+  CutSaddlePointSolver<dim>::select_gap_pressures(const Layout &layout)
   {
-    if (layout.gap_laplacian <= 0. || layout.in_gap.empty())
-      return;
-    const unsigned int n_u = velocity.size(), n_p = pressure.size();
+    const unsigned int n_p = pressure.size();
     std::vector<int>   gap_index(n_p, -1);
     for (unsigned int k = 0; k < n_p; ++k)
       if (layout.in_gap[pressure[k]] && !layout.constrained[pressure[k]])
@@ -390,10 +388,24 @@ namespace Fidus
           gap_index[k] = gap_pressures.size();
           gap_pressures.push_back(k);
         }
-    const unsigned int n_g = gap_pressures.size();
+    if (!gap_pressures.empty())
+      gap_weight = layout.gap_laplacian;
+    return gap_index;
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::build_gap_laplacian(const Layout &layout)
+  {
+    if (layout.gap_laplacian <= 0. || layout.in_gap.empty())
+      return;
+    const unsigned int     n_u       = velocity.size();
+    const std::vector<int> gap_index = select_gap_pressures(layout);
+    const unsigned int     n_g       = gap_pressures.size();
     if (n_g == 0)
       return;
-    gap_weight = layout.gap_laplacian;
 
     // Each fluid velocity's column of B^T, its gap pressures only (the
     // rigid unknowns, which couple to every pressure of their particle's
@@ -555,12 +567,16 @@ namespace Fidus
       Utilities::MPI::sum(k_diagonal, layout.communicator, k_diagonal);
     build_pressure_schur(pressure_mass, layout);
     pressure_jacobi.initialize(pressure_schur);
-    build_gap_laplacian(layout);
     mean = layout.pressure_mean;
     const bool split_all =
       multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1;
     if (split_all)
-      split_blocks(layout);
+      {
+        split_blocks(layout);
+        split_gap_laplacian(layout);
+      }
+    else
+      build_gap_laplacian(layout);
     statistics.pressure_seconds = lap();
     // Everything read from the system is in the blocks now.
     if (multigrid && release)

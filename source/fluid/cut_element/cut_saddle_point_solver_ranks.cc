@@ -5,11 +5,14 @@
 // vectors of those ranges (doc/developer/architecture.md, "The cut element
 // over ranks").
 
+#include <algorithm>
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
+#include <fidus/fluid/cut_element/distributed_galerkin_product.h>
 #include <sstream>
 #include <stdexcept>
 
@@ -110,8 +113,8 @@ namespace Fidus
           mean_part.local_element(k) = mean[pressure[p_first + k]];
       }
 
-    // The whole blocks are read no more (the gap Laplacian, built before,
-    // has its own copy).
+    // The whole blocks are read no more (split_gap_laplacian() reads the
+    // rows).
     coupling.clear();
     divergence.clear();
     pressure_block.clear();
@@ -121,6 +124,104 @@ namespace Fidus
     pressure_jacobi.clear();
     pressure_schur.clear();
     pressure_sparsity.reinit(0, 0, 0);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::split_gap_laplacian(const Layout &layout)
+  {
+    if (layout.gap_laplacian <= 0. || layout.in_gap.empty())
+      return;
+    const std::vector<int> gap_index = select_gap_pressures(layout);
+    if (gap_pressures.empty())
+      return;
+    const MPI_Comm     communicator = layout.communicator;
+    const unsigned int n_u          = velocity.size();
+    const unsigned int k_first      = k_owned.n_elements() > 0 ?
+                                        k_owned.nth_index_in_set(0) :
+                                        0,
+                       p_first      = p_owned.n_elements() > 0 ?
+                                        p_owned.nth_index_in_set(0) :
+                                        0;
+    // This rank's gap pressures are those of its range of the pressures:
+    // consecutive among them, in the ranks' order.
+    const unsigned int g_first =
+      std::lower_bound(gap_pressures.begin(), gap_pressures.end(), p_first) -
+      gap_pressures.begin();
+    const unsigned int g_end =
+      std::lower_bound(gap_pressures.begin(),
+                       gap_pressures.end(),
+                       p_first + p_owned.n_elements()) -
+      gap_pressures.begin();
+    gap_owned = contiguous_range(g_end - g_first, communicator);
+
+    // B D^-1 B^T = P^T A P with P B^T's fluid rows on the gap pressures'
+    // columns (the rigid rows left out, as in build_gap_laplacian()) and
+    // A = D^-1 on K's rows.
+    const Utilities::MPI::Partitioner &bt_columns =
+      bt_rows->column_partitioner();
+    DistributedRows<double> p, d_inverse, product;
+    p.fill(
+      k_owned,
+      gap_owned,
+      [&](const unsigned int k, const auto &f) {
+        if (k_first + k < n_u)
+          bt_rows->for_row(k, [&](const unsigned int c, const double v) {
+            const int g = gap_index[bt_columns.local_to_global(c)];
+            if (g >= 0 && v != 0.)
+              f(g, v);
+          });
+      },
+      communicator);
+    d_inverse.fill(
+      k_owned,
+      k_owned,
+      [&](const unsigned int k, const auto &f) {
+        const double d = k_diagonal[k_first + k];
+        f(k_first + k, d > 0. ? 1. / d : 0.);
+      },
+      communicator);
+    distributed_galerkin_product(d_inverse, p, gap_owned, product);
+
+    // Plus C among the gap pressures (the system holds -C), into Trilinos's
+    // matrix over the ranks.
+    const Utilities::MPI::Partitioner &product_columns =
+                                        product.column_partitioner(),
+                                      &p_columns = p_rows->column_partitioner();
+    const auto for_entries                       = [&](const auto &f) {
+      for (unsigned int k = 0; k < g_end - g_first; ++k)
+        {
+          const unsigned int row = g_first + k;
+          product.for_row(k, [&](const unsigned int c, const double v) {
+            f(row, product_columns.local_to_global(c), v);
+          });
+          p_rows->for_row(gap_pressures[row] - p_first,
+                          [&](const unsigned int c, const double v) {
+                            const int g =
+                              gap_index[p_columns.local_to_global(c)];
+                            if (g >= 0)
+                              f(row, g, -v);
+                          });
+        }
+    };
+    TrilinosWrappers::SparsityPattern pattern(gap_owned, communicator);
+    for_entries([&](const unsigned int i, const unsigned int j, double) {
+      pattern.add(i, j);
+    });
+    pattern.compress();
+    gap_rows.reinit(pattern);
+    for_entries([&](const unsigned int i,
+                    const unsigned int j,
+                    const double       v) { gap_rows.add(i, j, v); });
+    gap_rows.compress(VectorOperation::add);
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic        = true;
+    data.smoother_sweeps = 2;
+    gap_amg.initialize(gap_rows, data);
+    r_gap.reinit(gap_owned, communicator);
+    z_gap.reinit(gap_owned, communicator);
   }
 
 
@@ -207,8 +308,7 @@ namespace Fidus
                                                     const PartVector &r) const
   {
     // As apply_pressure_inverse(): CG with point Jacobi on S to 1e-2, the
-    // gap Laplacian's AMG (whole on every rank: its residual gathered),
-    // the constrained pressures exactly.
+    // gap Laplacian's AMG, the constrained pressures exactly.
     struct Jacobi
     {
       const PartVector &inverse_diagonal;
@@ -231,16 +331,15 @@ namespace Fidus
     if (!gap_pressures.empty())
       {
         const unsigned int p_first = r.get_partitioner()->local_range().first,
-                           p_end   = r.get_partitioner()->local_range().second;
-        r_g                        = 0.;
-        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
-          if (gap_pressures[k] >= p_first && gap_pressures[k] < p_end)
-            r_g[k] = r.local_element(gap_pressures[k] - p_first);
-        Utilities::MPI::sum(r_g, r.get_mpi_communicator(), r_g);
-        gap_amg.vmult(z_g, r_g);
-        for (unsigned int k = 0; k < gap_pressures.size(); ++k)
-          if (gap_pressures[k] >= p_first && gap_pressures[k] < p_end)
-            z.local_element(gap_pressures[k] - p_first) += gap_weight * z_g[k];
+                           g_first =
+                             z_gap.get_partitioner()->local_range().first;
+        for (unsigned int k = 0; k < r_gap.locally_owned_size(); ++k)
+          r_gap.local_element(k) =
+            r.local_element(gap_pressures[g_first + k] - p_first);
+        gap_amg.vmult(z_gap, r_gap);
+        for (unsigned int k = 0; k < z_gap.locally_owned_size(); ++k)
+          z.local_element(gap_pressures[g_first + k] - p_first) +=
+            gap_weight * z_gap.local_element(k);
       }
     z *= -1.;
     for (unsigned int c = 0; c < own_constrained.size(); ++c)
@@ -337,6 +436,8 @@ namespace Fidus
   CutSaddlePointSolver<2>::split_velocity_block(const Layout &);
   template void
   CutSaddlePointSolver<2>::split_blocks(const Layout &);
+  template void
+  CutSaddlePointSolver<2>::split_gap_laplacian(const Layout &);
   template CutSaddlePointSolver<2>::PartsVector
   CutSaddlePointSolver<2>::make_parts() const;
   template void
@@ -364,6 +465,8 @@ namespace Fidus
   CutSaddlePointSolver<3>::split_velocity_block(const Layout &);
   template void
   CutSaddlePointSolver<3>::split_blocks(const Layout &);
+  template void
+  CutSaddlePointSolver<3>::split_gap_laplacian(const Layout &);
   template CutSaddlePointSolver<3>::PartsVector
   CutSaddlePointSolver<3>::make_parts() const;
   template void

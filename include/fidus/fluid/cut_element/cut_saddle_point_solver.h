@@ -239,6 +239,11 @@ namespace Fidus
      */
     void
     build_gap_laplacian(const Layout &layout);
+    /// The pressures in thin gaps, not constrained (gap_pressures, in
+    /// the pressures' order; gap_weight), and each pressure's index among
+    /// them (-1: none).
+    std::vector<int>
+    select_gap_pressures(const Layout &layout);
 
     /// With the multigrid on more than one rank: K's rows split among
     /// the ranks (K itself is freed once they are copied), on which the
@@ -259,10 +264,15 @@ namespace Fidus
      * S's by ranges of the pressures, the mean's part and S's inverse
      * diagonal, copied from the whole blocks (which are freed), so that
      * FGMRES and the pressure side run on this rank's rows only
-     * (solve_split()). The gap Laplacian's AMG stays whole on every rank.
+     * (solve_split()).
      */
     void
     split_blocks(const Layout &layout);
+    /// build_gap_laplacian() with the split, after split_blocks(): L_gap's
+    /// rows on this rank's gap pressures, B D^-1 B^T as a Galerkin product
+    /// of the ranks' rows of B^T, and its AMG over the ranks.
+    void
+    split_gap_laplacian(const Layout &layout);
     /// A zero vector over this rank's ranges.
     PartsVector
     make_parts() const;
@@ -294,6 +304,11 @@ namespace Fidus
     IndexSet k_owned, p_owned;
     /// S's inverse diagonal and m, on this rank's pressures.
     PartVector s_inverse_diagonal, mean_part;
+    /// With the split: this rank's range of the gap pressures, L_gap's
+    /// rows on it and the AMG's vectors there.
+    IndexSet                       gap_owned;
+    TrilinosWrappers::SparseMatrix gap_rows;
+    mutable PartVector             r_gap, z_gap;
     /// This rank's constrained pressures (local indices) and their
     /// diagonal in the system.
     std::vector<unsigned int> own_constrained;
