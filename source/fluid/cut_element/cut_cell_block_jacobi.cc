@@ -5,6 +5,7 @@
 #include <fidus/fluid/cut_element/component_coupling.h>
 #include <fidus/fluid/cut_element/cut_cell_block_jacobi.h>
 #include <limits>
+#include <type_traits>
 
 namespace Fidus
 {
@@ -45,6 +46,8 @@ namespace Fidus
     const std::vector<std::vector<unsigned int>> &blocks,
     const std::vector<unsigned char>             &component)
   {
+    exchange = false;
+    block_rows.reset();
     std::vector<double> diagonal(a.m());
     for (unsigned int i = 0; i < a.m(); ++i)
       diagonal[i] = a.diag_element(i);
@@ -56,7 +59,8 @@ namespace Fidus
           if (couples_within_component(component, i, it->column()))
             f(it->column(), it->value());
       },
-      blocks);
+      blocks,
+      a.m());
   }
 
 
@@ -67,7 +71,73 @@ namespace Fidus
     const std::vector<std::vector<unsigned int>> &blocks,
     const std::vector<unsigned char>             &component)
   {
-    const unsigned int  n = a.local_rows();
+    using Index              = types::global_dof_index;
+    const unsigned int n     = a.local_rows();
+    const Index        first = a.first_row();
+    const auto         owned = [&](const Index g) {
+      return g >= first && g < first + n;
+    };
+    // This rank's blocks: those whose smallest row it owns; the other
+    // ranks' rows they hold.
+    std::vector<const std::vector<unsigned int> *> mine;
+    std::vector<Index>                             others;
+    for (const auto &block : blocks)
+      if (!block.empty() &&
+          owned(*std::min_element(block.begin(), block.end())))
+        {
+          mine.push_back(&block);
+          for (const unsigned int g : block)
+            if (!owned(g))
+              others.push_back(g);
+        }
+    std::sort(others.begin(), others.end());
+    others.erase(std::unique(others.begin(), others.end()), others.end());
+    IndexSet ghosts(a.m());
+    ghosts.add_indices(others.begin(), others.end());
+    const MPI_Comm comm = a.get_mpi_communicator();
+    block_rows          = std::make_shared<const Utilities::MPI::Partitioner>(
+      a.locally_owned_rows(),
+      ghosts,
+      comm);
+    exchange = Utilities::MPI::max(others.empty() ? 0 : 1, comm) > 0;
+    const unsigned int n_rows = n + others.size();
+    const auto         local  = [&](const Index g) -> unsigned int {
+      return owned(g)                      ? g - first :
+                      block_rows->is_ghost_entry(g) ? block_rows->global_to_local(g) :
+                                                      n_rows;
+    };
+
+    // The other ranks' rows, in local numbering (their columns outside
+    // this rank's rows and blocks' rows dropped).
+    std::vector<std::vector<std::pair<unsigned int, double>>> fetched(
+      others.size());
+    a.for_rows_of_others(
+      others,
+      [&](const Index       g,
+          const Index      *columns,
+          const double     *values,
+          const std::size_t length) {
+        auto &row = fetched[local(g) - n];
+        for (std::size_t e = 0; e < length; ++e)
+          if (local(columns[e]) < n_rows &&
+              (component.empty() ||
+               couples_within_component(component, g, columns[e])))
+            row.emplace_back(local(columns[e]), values[e]);
+      });
+    // The weights count every rank's blocks (each rank has the list).
+    std::vector<unsigned int> count(n_rows, 0);
+    for (const auto &block : blocks)
+      for (const unsigned int g : block)
+        if (local(g) < n_rows)
+          ++count[local(g)];
+    std::vector<std::vector<unsigned int>> local_blocks;
+    for (const auto *block : mine)
+      {
+        local_blocks.emplace_back();
+        for (const unsigned int g : *block)
+          local_blocks.back().push_back(local(g));
+      }
+
     std::vector<double> diagonal(n);
     for (unsigned int k = 0; k < n; ++k)
       diagonal[k] = a.diag_element(k);
@@ -76,15 +146,22 @@ namespace Fidus
       diagonal,
       [&](const unsigned int                               k,
           const std::function<void(unsigned int, double)> &f) {
+        if (k >= n)
+          {
+            for (const auto &entry : fetched[k - n])
+              f(entry.first, entry.second);
+            return;
+          }
         a.for_row(k, [&](const unsigned int j, const double v) {
-          if (j < n && (component.empty() ||
-                        couples_within_component(component,
-                                                 a.first_row() + k,
-                                                 columns.local_to_global(j))))
-            f(j, v);
+          const Index g = columns.local_to_global(j);
+          if (component.empty() ||
+              couples_within_component(component, first + k, g))
+            f(local(g), v);
         });
       },
-      blocks);
+      local_blocks,
+      n_rows,
+      count);
   }
 
 
@@ -95,7 +172,9 @@ namespace Fidus
     const std::function<void(unsigned int,
                              const std::function<void(unsigned int, double)> &)>
                                                  &row,
-    const std::vector<std::vector<unsigned int>> &blocks)
+    const std::vector<std::vector<unsigned int>> &blocks,
+    const unsigned int                            n_rows,
+    const std::vector<unsigned int>              &block_count)
   {
     const unsigned int n = diagonal.size();
     block_start.assign(1, 0);
@@ -112,7 +191,7 @@ namespace Fidus
     // value, Q |Lambda|^-1 Q^T, which keeps P^-1 positive definite and acts
     // as the inverse on the block's positive modes (leaving the block out
     // cost 8 of 43 FGMRES iterations there).
-    std::vector<int>         position(n, -1);
+    std::vector<int>         position(n_rows, -1);
     LAPACKFullMatrix<double> block_matrix, copy;
     for (const auto &block : blocks)
       {
@@ -122,7 +201,7 @@ namespace Fidus
         block_matrix.reinit(m, m);
         for (unsigned int p = 0; p < m; ++p)
           row(block[p], [&](const unsigned int j, const double v) {
-            if (j < n && position[j] >= 0)
+            if (j < n_rows && position[j] >= 0)
               block_matrix(p, position[j]) = v;
           });
         for (unsigned int p = 0; p < m; ++p)
@@ -152,9 +231,13 @@ namespace Fidus
 
     // The weights: 1/sqrt(the number of blocks that hold an unknown) on
     // both sides; point Jacobi where none does.
-    std::vector<unsigned int> count(n, 0);
-    for (const unsigned int i : rows)
-      ++count[i];
+    std::vector<unsigned int> count = block_count;
+    if (count.empty())
+      {
+        count.assign(n_rows, 0);
+        for (const unsigned int i : rows)
+          ++count[i];
+      }
     inverse_diagonal.reinit(n);
     for (unsigned int i = 0; i < n; ++i)
       {
@@ -174,14 +257,10 @@ namespace Fidus
 
 
 
-  template <typename VectorType>
+  template <typename Number>
   void
-  CutCellBlockJacobi::vmult(VectorType &dst, const VectorType &src) const
+  CutCellBlockJacobi::add_blocks(const Number *in, Number *out) const
   {
-    auto       *out = dst.begin();
-    const auto *in  = src.begin();
-    for (unsigned int i = 0; i < inverse_diagonal.size(); ++i)
-      out[i] = in[i] * inverse_diagonal[i];
     for (unsigned int b = 0; b < n_blocks(); ++b)
       {
         const unsigned int *const r = rows.data() + block_start[b];
@@ -209,6 +288,60 @@ namespace Fidus
         for (unsigned int p = 0; p < m; ++p)
           out[r[p]] += y[p];
       }
+  }
+
+
+
+  template <typename Number>
+  void
+  CutCellBlockJacobi::vmult_exchanging(
+    LinearAlgebra::distributed::Vector<Number>       &dst,
+    const LinearAlgebra::distributed::Vector<Number> &src,
+    LinearAlgebra::distributed::Vector<Number>       &in,
+    LinearAlgebra::distributed::Vector<Number>       &out) const
+  {
+    if (in.get_partitioner() != block_rows)
+      {
+        in.reinit(block_rows);
+        out.reinit(block_rows);
+      }
+    const unsigned int n = inverse_diagonal.size();
+    std::copy(src.begin(), src.begin() + n, in.begin());
+    in.update_ghost_values();
+    std::fill(out.get_values(),
+              out.get_values() + n + block_rows->n_ghost_indices(),
+              Number());
+    add_blocks(in.get_values(), out.get_values());
+    // The other ranks' rows' results to their owners, added there.
+    out.compress(VectorOperation::add);
+    for (unsigned int i = 0; i < n; ++i)
+      dst.local_element(i) =
+        src.local_element(i) * inverse_diagonal[i] + out.local_element(i);
+  }
+
+
+
+  template <typename VectorType>
+  void
+  CutCellBlockJacobi::vmult(VectorType &dst, const VectorType &src) const
+  {
+    if constexpr (std::is_same_v<VectorType,
+                                 LinearAlgebra::distributed::Vector<double>>)
+      {
+        if (exchange)
+          return vmult_exchanging(dst, src, in_double, out_double);
+      }
+    if constexpr (std::is_same_v<VectorType,
+                                 LinearAlgebra::distributed::Vector<float>>)
+      {
+        if (exchange)
+          return vmult_exchanging(dst, src, in_float, out_float);
+      }
+    auto       *out = dst.begin();
+    const auto *in  = src.begin();
+    for (unsigned int i = 0; i < inverse_diagonal.size(); ++i)
+      out[i] = in[i] * inverse_diagonal[i];
+    add_blocks(in, out);
   }
 
   template void

@@ -343,16 +343,12 @@ namespace Fidus
           if (coarse[l]->diag_element(k) == 0.)
             coarse[l]->diag_element(k) = 1.;
 
-        const unsigned int first =
-          owned[l].n_elements() > 0 ? owned[l].nth_index_in_set(0) : 0;
         const auto blocks =
           settings.cut_cell_blocks ?
             cut_cell_blocks(l == 0 ? system : *levels.dofs[l],
                             l == 0 ? system_constraints : levels.constraints[l],
                             l == 0,
-                            local,
-                            first,
-                            owned[l].n_elements()) :
+                            local) :
             std::vector<std::vector<unsigned int>>();
         block_jacobi.push_back(std::make_shared<CutCellBlockJacobi>());
         if (l == 0)
@@ -725,15 +721,15 @@ namespace Fidus
     const DoFHandler<dim>           &level_dofs,
     const AffineConstraints<double> &level_constraints,
     const bool                       finest,
-    const std::vector<int>          &local,
-    const unsigned int               first,
-    const unsigned int               n_owned) const
+    const std::vector<int>          &local) const
   {
     // On the finest level a row is a system velocity (local >= 0; the
     // cells inside a particle have no DoFs, pressures no row); below it,
     // every unconstrained DoF of the level is its own row. Constrained
-    // unknowns are left out: their rows hold the diagonal alone. Rows of
-    // other ranks too: a block is one rank's.
+    // unknowns are left out: their rows hold the diagonal alone. Every
+    // rank's blocks, in global rows: CutCellBlockJacobi keeps on each rank
+    // those whose smallest row it owns, with the other ranks' rows they
+    // hold.
     std::vector<std::vector<unsigned int>> blocks;
     std::vector<types::global_dof_index>   indices;
     for (const auto &cell : level_dofs.active_cell_iterators())
@@ -748,9 +744,7 @@ namespace Fidus
           if (!level_constraints.is_constrained(i) &&
               (!finest || local[i] >= 0))
             {
-              const unsigned int row = finest ? local[i] : i;
-              if (row >= first && row < first + n_owned)
-                block.push_back(row - first);
+              block.push_back(finest ? local[i] : i);
             }
         if (!block.empty())
           blocks.push_back(std::move(block));

@@ -1,7 +1,10 @@
 #include <algorithm>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
 #include <deal.II/base/parallel.h>
 #include <fidus/fluid/cut_element/distributed_rows.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
+#include <map>
 #include <stdexcept>
 
 namespace Fidus
@@ -215,6 +218,66 @@ namespace Fidus
     return row_start.capacity() * sizeof(std::size_t) +
            column.capacity() * sizeof(unsigned int) +
            value.capacity() * sizeof(Number) + ghosted.memory_consumption();
+  }
+
+
+
+  template <typename Number>
+  void
+  DistributedRows<Number>::for_rows_of_others(
+    const std::vector<types::global_dof_index> &rows,
+    const std::function<void(types::global_dof_index,
+                             const types::global_dof_index *,
+                             const double *,
+                             std::size_t)>     &f) const
+  {
+    using Index = types::global_dof_index;
+    // Each rank's rows end where the next one's begin, in the ranks' order.
+    const std::vector<unsigned int> sizes =
+      Utilities::MPI::all_gather(communicator, local_rows());
+    std::vector<Index> ends(sizes.size());
+    Index              total = 0;
+    for (unsigned int r = 0; r < sizes.size(); ++r)
+      ends[r] = total += sizes[r];
+    std::map<unsigned int, std::vector<Index>> requests;
+    for (const Index g : rows)
+      requests[std::upper_bound(ends.begin(), ends.end(), g) - ends.begin()]
+        .push_back(g);
+    // Each reply: per row its index, its length and its global columns
+    // (first), and its values (second).
+    using Packed = std::pair<std::vector<Index>, std::vector<double>>;
+    std::map<unsigned int, Packed> replies;
+    for (const auto &request :
+         Utilities::MPI::some_to_some(communicator, requests))
+      {
+        Packed &packed = replies[request.first];
+        for (const Index g : request.second)
+          {
+            const unsigned int k = g - first;
+            packed.first.push_back(g);
+            packed.first.push_back(row_length(k));
+            for_row(k, [&](const unsigned int j, const Number v) {
+              packed.first.push_back(partitioner->local_to_global(j));
+              packed.second.push_back(v);
+            });
+          }
+      }
+    for (const auto &answer :
+         Utilities::MPI::some_to_some(communicator, replies))
+      {
+        const Packed &packed = answer.second;
+        std::size_t   at = 0, value_at = 0;
+        while (at < packed.first.size())
+          {
+            const std::size_t n = packed.first[at + 1];
+            f(packed.first[at],
+              packed.first.data() + at + 2,
+              packed.second.data() + value_at,
+              n);
+            at += 2 + n;
+            value_at += n;
+          }
+      }
   }
 
 

@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 #include <fidus/fluid/cut_element/distributed_rows.h>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace Fidus
@@ -56,10 +57,13 @@ namespace Fidus
 
     /**
      * The same for this rank's rows of @p a (square, split among the
-     * ranks), with @p blocks of local row numbers: a block holds rows of
-     * this rank only, and the couplings to other ranks' rows are left to
-     * point Jacobi's neighbours, as between blocks. @p component, if not
-     * empty, has one entry per global row of @p a.
+     * ranks). @p blocks are every rank's blocks, in global row numbers
+     * (each rank passes the same list): a rank keeps those whose smallest
+     * row it owns, with the rows other ranks own, which it fetches from
+     * them, so a block across the border of two ranks' rows is the one
+     * rank's block (vmult() then exchanges those rows' values). The
+     * weights count every block. @p component, if not empty, has one
+     * entry per global row of @p a. Collective.
      */
     void
     initialize(const DistributedRows<double>                &a,
@@ -89,14 +93,42 @@ namespace Fidus
 
   private:
     /// The set-up from the diagonal of A and its rows: @p row(i, f)
-    /// calls f(j, a_ij) for the entries of row i (columns j beyond the
-    /// diagonal's size are ignored).
+    /// calls f(j, a_ij) for the entries of row i (columns j from
+    /// @p n_rows on are ignored). Rows are local numbers: the diagonal's
+    /// (this rank's) first, then the other ranks' rows the blocks hold, up
+    /// to @p n_rows. @p count, if not empty, is the number of blocks
+    /// (over all ranks) that hold each row; otherwise @p blocks' own.
     void
     setup(const std::vector<double> &diagonal,
           const std::function<
             void(unsigned int,
                  const std::function<void(unsigned int, double)> &)> &row,
-          const std::vector<std::vector<unsigned int>>               &blocks);
+          const std::vector<std::vector<unsigned int>>               &blocks,
+          const unsigned int                                          n_rows,
+          const std::vector<unsigned int> &count = {});
+
+    /// out += the blocks' part of P^-1 in (local row numbers).
+    template <typename Number>
+    void
+    add_blocks(const Number *in, Number *out) const;
+
+    /// vmult() on distributed vectors whose blocks hold other ranks' rows:
+    /// those rows' values imported, their results sent back and added.
+    template <typename Number>
+    void
+    vmult_exchanging(LinearAlgebra::distributed::Vector<Number>       &dst,
+                     const LinearAlgebra::distributed::Vector<Number> &src,
+                     LinearAlgebra::distributed::Vector<Number>       &in,
+                     LinearAlgebra::distributed::Vector<Number> &out) const;
+
+    /// With blocks across the ranks: this rank's rows and the other
+    /// ranks' that its blocks hold; whether some rank's blocks hold rows
+    /// of another (then every vmult() exchanges); the vectors of the
+    /// exchange.
+    std::shared_ptr<const Utilities::MPI::Partitioner> block_rows;
+    bool                                               exchange = false;
+    mutable LinearAlgebra::distributed::Vector<double> in_double, out_double;
+    mutable LinearAlgebra::distributed::Vector<float>  in_float, out_float;
 
     /// D_F^-1: 1/A_ii on the rows of no block, 0 on the others.
     Vector<double> inverse_diagonal;

@@ -66,11 +66,12 @@ namespace Fidus
    * - **Over MPI ranks.** Every level is a DistributedRows, split among the
    *   ranks in contiguous ranges of rows: the finest as the velocity block
    *   handed in, the coarser ones evenly; the Galerkin products are
-   *   distributed_galerkin_product(), a cut-cell block holds the rows of
-   *   one rank, and the coarsest level is gathered and factorised on every
-   *   rank. The level meshes are built whole on every rank (the cut
-   *   element's mesh is). On one rank (initialize() with a SparseMatrix)
-   *   the same code runs on MPI_COMM_SELF with nothing to communicate.
+   *   distributed_galerkin_product(), a cut-cell block is kept by the
+   *   rank of its smallest row (with the other ranks' rows it holds), and
+   *   the coarsest level is gathered and factorised on every rank. The level
+   * meshes are built whole on every rank (the cut element's mesh is). On one
+   * rank (initialize() with a SparseMatrix) the same code runs on MPI_COMM_SELF
+   * with nothing to communicate.
    */
   template <int dim>
   class CutVelocityMultigrid
@@ -213,16 +214,13 @@ namespace Fidus
     near_surface(const Cell &cell) const;
 
     /// The blocks of a level's smoother: the unknowns of each of its cells
-    /// near a surface that this rank owns, as local rows (@p first: the
-    /// global number of local row 0, @p n_owned: the rows owned; @p local
+    /// near a surface, as the level's global rows, every rank's (@p local
     /// maps a system DoF to its row on the finest level).
     std::vector<std::vector<unsigned int>>
     cut_cell_blocks(const DoFHandler<dim>           &level_dofs,
                     const AffineConstraints<double> &level_constraints,
                     const bool                       finest,
-                    const std::vector<int>          &local,
-                    const unsigned int               first,
-                    const unsigned int               n_owned) const;
+                    const std::vector<int>          &local) const;
 
     /// The smoothers and the level vectors, once the levels are built.
     void

@@ -9,6 +9,7 @@
 #include <deal.II/base/subscriptor.h>
 #include <deal.II/lac/la_parallel_vector.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -179,6 +180,19 @@ namespace Fidus
     /// dst += A^T src.
     void
     Tvmult_add(VectorType &dst, const VectorType &src) const;
+
+    /**
+     * f(global row, global columns, values, number of entries) for each
+     * of @p rows, global indices of rows that other ranks own (ascending),
+     * fetched from their owners. Collective: every rank calls it, each
+     * with its own list (which may be empty).
+     */
+    void
+    for_rows_of_others(const std::vector<types::global_dof_index> &rows,
+                       const std::function<void(types::global_dof_index,
+                                                const types::global_dof_index *,
+                                                const double *,
+                                                std::size_t)>     &f) const;
 
     /// Bytes held on this rank.
     std::size_t
