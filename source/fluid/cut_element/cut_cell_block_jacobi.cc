@@ -107,8 +107,33 @@ namespace Fidus
                                                       n_rows;
     };
 
-    // The other ranks' rows, in local numbering (their columns outside
-    // this rank's rows and blocks' rows dropped).
+    // Which blocks hold each row (CSR over the global rows; every rank has
+    // the list), so that an owner sends of a row only the columns a block
+    // shares with it.
+    std::vector<std::size_t>  row_start(a.m() + 1, 0);
+    std::vector<unsigned int> block_of;
+    for (const auto &block : blocks)
+      for (const unsigned int g : block)
+        ++row_start[g + 1];
+    for (unsigned int i = 0; i < a.m(); ++i)
+      row_start[i + 1] += row_start[i];
+    block_of.resize(row_start[a.m()]);
+    {
+      std::vector<std::size_t> at(row_start.begin(), row_start.end() - 1);
+      for (unsigned int b = 0; b < blocks.size(); ++b)
+        for (const unsigned int g : blocks[b])
+          block_of[at[g]++] = b;
+    }
+    const auto share_a_block = [&](const Index i, const Index j) {
+      for (std::size_t e = row_start[i]; e < row_start[i + 1]; ++e)
+        {
+          const auto &block = blocks[block_of[e]];
+          if (std::find(block.begin(), block.end(), j) != block.end())
+            return true;
+        }
+      return false;
+    };
+    // The other ranks' rows, in local numbering.
     std::vector<std::vector<std::pair<unsigned int, double>>> fetched(
       others.size());
     a.for_rows_of_others(
@@ -123,7 +148,8 @@ namespace Fidus
               (component.empty() ||
                couples_within_component(component, g, columns[e])))
             row.emplace_back(local(columns[e]), values[e]);
-      });
+      },
+      share_a_block);
     // The weights count every rank's blocks (each rank has the list).
     std::vector<unsigned int> count(n_rows, 0);
     for (const auto &block : blocks)

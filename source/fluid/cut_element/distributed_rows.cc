@@ -229,7 +229,9 @@ namespace Fidus
     const std::function<void(types::global_dof_index,
                              const types::global_dof_index *,
                              const double *,
-                             std::size_t)>     &f) const
+                             std::size_t)>     &f,
+    const std::function<bool(types::global_dof_index, types::global_dof_index)>
+      &keep) const
   {
     using Index = types::global_dof_index;
     // Each rank's rows end where the next one's begin, in the ranks' order.
@@ -255,10 +257,15 @@ namespace Fidus
           {
             const unsigned int k = g - first;
             packed.first.push_back(g);
-            packed.first.push_back(row_length(k));
+            const std::size_t length_at = packed.first.size();
+            packed.first.push_back(0);
             for_row(k, [&](const unsigned int j, const Number v) {
-              packed.first.push_back(partitioner->local_to_global(j));
+              const Index column = partitioner->local_to_global(j);
+              if (keep && !keep(g, column))
+                return;
+              packed.first.push_back(column);
               packed.second.push_back(v);
+              ++packed.first[length_at];
             });
           }
       }

@@ -184,15 +184,20 @@ namespace Fidus
     /**
      * f(global row, global columns, values, number of entries) for each
      * of @p rows, global indices of rows that other ranks own (ascending),
-     * fetched from their owners. Collective: every rank calls it, each
-     * with its own list (which may be empty).
+     * fetched from their owners; with @p keep, only the entries (row,
+     * column) for which the owner's keep(row, column) is true are sent.
+     * Collective: every rank calls it, each with its own list (which may
+     * be empty).
      */
     void
-    for_rows_of_others(const std::vector<types::global_dof_index> &rows,
-                       const std::function<void(types::global_dof_index,
-                                                const types::global_dof_index *,
-                                                const double *,
-                                                std::size_t)>     &f) const;
+    for_rows_of_others(
+      const std::vector<types::global_dof_index>         &rows,
+      const std::function<void(types::global_dof_index,
+                               const types::global_dof_index *,
+                               const double *,
+                               std::size_t)>             &f,
+      const std::function<bool(types::global_dof_index,
+                               types::global_dof_index)> &keep = {}) const;
 
     /// Bytes held on this rank.
     std::size_t
