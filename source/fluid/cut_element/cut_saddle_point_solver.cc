@@ -722,48 +722,7 @@ namespace Fidus
   {
     if (bt_rows)
       return solve_split(x, b, tolerance, max_iterations, from_x);
-    Timer        timer;
-    const System system{*this};
-    const double b_norm       = b.l2_norm();
-    bool         start_from_x = from_x;
-    if (start_from_x)
-      {
-        Vector<double> r(b.size());
-        system.vmult(r, x);
-        r.sadd(-1., 1., b);
-        statistics.initial_residual = r.l2_norm() / b_norm;
-        if (!(statistics.initial_residual < 1.))
-          start_from_x = false;
-      }
-    if (!start_from_x)
-      {
-        x                           = 0.;
-        statistics.initial_residual = 1.;
-      }
-    SolverControl control(max_iterations, tolerance * b_norm, false, false);
-    // Thin gaps take FGMRES past 100 iterations (the pressure's mass
-    // matrix weakens there), and a restart at 100 then stalls: the paper's
-    // 3D pair at a gap of 0.022 a took 1340 iterations with restarts at
-    // 100 (doc/cut_element.md). A basis of 300 costs 2 x 300 vectors.
-    SolverFGMRES<Vector<double>> fgmres(
-      control,
-      SolverFGMRES<Vector<double>>::AdditionalData(300));
-    try
-      {
-        fgmres.solve(system, x, b, *this);
-      }
-    catch (const SolverControl::NoConvergence &e)
-      {
-        std::ostringstream message;
-        message << "CutSaddlePointSolver: FGMRES did not reach the relative "
-                   "residual "
-                << tolerance << " in " << max_iterations
-                << " iterations (reached " << e.last_residual / b.l2_norm()
-                << ")";
-        throw std::runtime_error(message.str());
-      }
-    statistics.iterations    = control.last_step();
-    statistics.solve_seconds = timer.wall_time();
+    run_fgmres(System{*this}, *this, x, b, tolerance, max_iterations, from_x);
     return statistics;
   }
 

@@ -371,7 +371,6 @@ namespace Fidus
                                          const unsigned int    max_iterations,
                                          const bool            from_x)
   {
-    Timer timer;
     // The system and the preconditioner as FGMRES multiplies by them.
     struct Operator
     {
@@ -389,44 +388,16 @@ namespace Fidus
     const Operator system{*this, true}, preconditioner{*this, false};
     PartsVector    x_parts = make_parts(), b_parts = make_parts();
     to_parts(b, b_parts);
-    const double b_norm       = b_parts.l2_norm();
-    bool         start_from_x = from_x;
-    if (start_from_x)
-      {
-        to_parts(x, x_parts);
-        PartsVector r = make_parts();
-        system.vmult(r, x_parts);
-        r.sadd(-1., 1., b_parts);
-        statistics.initial_residual = r.l2_norm() / b_norm;
-        if (!(statistics.initial_residual < 1.))
-          start_from_x = false;
-      }
-    if (!start_from_x)
-      {
-        x_parts                     = 0.;
-        statistics.initial_residual = 1.;
-      }
-    // The basis as in solve().
-    SolverControl control(max_iterations, tolerance * b_norm, false, false);
-    SolverFGMRES<PartsVector> fgmres(
-      control,
-      typename SolverFGMRES<PartsVector>::AdditionalData(300));
-    try
-      {
-        fgmres.solve(system, x_parts, b_parts, preconditioner);
-      }
-    catch (const SolverControl::NoConvergence &e)
-      {
-        std::ostringstream message;
-        message << "CutSaddlePointSolver: FGMRES did not reach the relative "
-                   "residual "
-                << tolerance << " in " << max_iterations
-                << " iterations (reached " << e.last_residual / b_norm << ")";
-        throw std::runtime_error(message.str());
-      }
+    if (from_x)
+      to_parts(x, x_parts);
+    run_fgmres(system,
+               preconditioner,
+               x_parts,
+               b_parts,
+               tolerance,
+               max_iterations,
+               from_x);
     from_parts(x_parts, x);
-    statistics.iterations    = control.last_step();
-    statistics.solve_seconds = timer.wall_time();
     return statistics;
   }
 
