@@ -7,6 +7,8 @@
 // ranks:
 // - A x, A^T x, P x, P^T x (rectangular P) to 1e-14 of the largest entry
 //   of the serial result, and A x in float (copied from double) to 1e-6;
+// - the same for A's rows read in place from the SparseMatrix (borrow()),
+//   with its diagonal exactly;
 // - P^T A P: every entry to 1e-14 of the largest entry of the dense
 //   product, its entries exactly the positions the patterns give (the
 //   boolean product of P^T, A and P) and every diagonal entry, first in its
@@ -232,6 +234,33 @@ namespace
     a_float.vmult(fy, distributed<float>(x, fine));
     a.vmult(y, x);
     check_range(name + ": A x in float", error(fy, y), 0., 1e-6);
+
+    // A's rows read in place (borrow()): the same products, diagonal and
+    // float copy.
+    DistributedRows<double> a_borrowed;
+    a_borrowed.borrow(fine, a, MPI_COMM_WORLD);
+    a.vmult(y, x);
+    a_borrowed.vmult(dy, distributed<double>(x, fine));
+    check_range(name + ": A x, borrowed", error(dy, y), 0., 1e-14);
+    a.Tvmult(y, x);
+    a_borrowed.Tvmult(dy, distributed<double>(x, fine));
+    check_range(name + ": A^T x, borrowed", error(dy, y), 0., 1e-14);
+    double diagonal = 0.;
+    for (unsigned int k = 0; k < a_borrowed.local_rows(); ++k)
+      diagonal = std::max(diagonal,
+                          std::abs(a_borrowed.diag_element(k) -
+                                   a.diag_element(a_borrowed.first_row() + k)));
+    check_range(name + ": diagonal, borrowed",
+                Utilities::MPI::max(diagonal, MPI_COMM_WORLD),
+                0.,
+                0.);
+    a_float.copy_from(a_borrowed);
+    a_float.vmult(fy, distributed<float>(x, fine));
+    a.vmult(y, x);
+    check_range(name + ": A x in float, from the borrowed rows",
+                error(fy, y),
+                0.,
+                1e-6);
 
     for (const bool separate : {false, true})
       {

@@ -24,23 +24,11 @@ namespace Fidus
   {
     // K's rows this rank holds (the rigid rows go with the last range):
     // split_blocks() set k_owned.
-    const MPI_Comm     communicator = layout.communicator;
-    const unsigned int first        = layout.k_first;
+    const MPI_Comm communicator = layout.communicator;
+    // Read in place: K holds these rows only (the other velocity rows an
+    // empty diagonal), so the rank keeps no second copy of them.
     k_rows = std::make_unique<DistributedRows<double>>();
-    k_rows->fill(
-      k_owned,
-      k_owned,
-      [&](const unsigned int k, const auto &f) {
-        for (auto it  = velocity_matrix.begin(first + k),
-                  end = velocity_matrix.end(first + k);
-             it != end;
-             ++it)
-          f(it->column(), it->value());
-      },
-      communicator);
-    // Every rank holds the whole block until here: now only its rows.
-    velocity_matrix.clear();
-    blocks->k_pattern.reinit(0, 0, 0);
+    k_rows->borrow(k_owned, velocity_matrix, communicator);
     k_in.reinit(k_owned, communicator);
     multigrid->initialize(*k_rows, velocity, rigid.size());
   }

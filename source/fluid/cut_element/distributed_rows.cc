@@ -5,7 +5,9 @@
 #include <fidus/fluid/cut_element/distributed_rows.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <map>
+#include <mutex>
 #include <stdexcept>
+#include <type_traits>
 
 namespace Fidus
 {
@@ -105,7 +107,8 @@ namespace Fidus
     import       = other.import;
     row_start    = other.row_start;
     column       = other.column;
-    value.assign(other.value.begin(), other.value.end());
+    value.assign(other.values(), other.values() + other.row_start.back());
+    borrowed = nullptr;
     if (import)
       ghosted.reinit(partitioner);
     else
@@ -161,12 +164,12 @@ namespace Fidus
       0u,
       local_rows(),
       [&](const unsigned int begin, const unsigned int end) {
-        const Number       *v = value.data() + row_start[begin];
+        const Number       *v = values() + row_start[begin];
         const unsigned int *c = column.data() + row_start[begin];
         for (unsigned int k = begin; k < end; ++k)
           {
             Number              sum     = add ? y[k] : Number();
-            const Number *const row_end = value.data() + row_start[k + 1];
+            const Number *const row_end = values() + row_start[k + 1];
             while (v != row_end)
               sum += *v++ * x[*c++];
             y[k] = sum;
@@ -200,7 +203,7 @@ namespace Fidus
     const Number *x = src.begin();
     for (unsigned int k = 0; k < local_rows(); ++k)
       for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-        y[column[e]] += value[e] * x[k];
+        y[column[e]] += values()[e] * x[k];
     if (!import)
       return;
     ghosted.compress(VectorOperation::add);
@@ -284,6 +287,73 @@ namespace Fidus
             at += 2 + n;
             value_at += n;
           }
+      }
+  }
+
+
+
+  template <typename Number>
+  void
+  DistributedRows<Number>::borrow(const IndexSet             &rows,
+                                  const SparseMatrix<double> &matrix,
+                                  const MPI_Comm              comm)
+  {
+    if constexpr (!std::is_same_v<Number, double>)
+      {
+        AssertThrow(false, ExcNotImplemented());
+      }
+    else
+      {
+        using Index                    = types::global_dof_index;
+        const unsigned int     n       = rows.n_elements();
+        const Index            zero    = n > 0 ? rows.nth_index_in_set(0) : 0;
+        const SparsityPattern &pattern = matrix.get_sparsity_pattern();
+        // The ghost columns, on the threads.
+        std::vector<Index> ghosts;
+        std::mutex         ghosts_mutex;
+        on_row_ranges(n,
+                      4,
+                      [&](const unsigned int begin, const unsigned int end) {
+                        std::vector<Index> mine;
+                        for (unsigned int k = begin; k < end; ++k)
+                          for (auto it = pattern.begin(zero + k);
+                               it != pattern.end(zero + k);
+                               ++it)
+                            if (it->column() < zero || it->column() >= zero + n)
+                              mine.push_back(it->column());
+                        std::sort(mine.begin(), mine.end());
+                        mine.erase(std::unique(mine.begin(), mine.end()),
+                                   mine.end());
+                        std::lock_guard<std::mutex> lock(ghosts_mutex);
+                        ghosts.insert(ghosts.end(), mine.begin(), mine.end());
+                      });
+        std::sort(ghosts.begin(), ghosts.end());
+        ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+        setup_columns(rows, rows, ghosts, comm);
+        // The rows lie one after the other in the matrix's values, each
+        // with its diagonal first (a square SparsityPattern's), as this
+        // class keeps a square matrix's.
+        row_start.assign(n + 1, 0);
+        for (unsigned int k = 0; k < n; ++k)
+          row_start[k + 1] = row_start[k] + pattern.row_length(zero + k);
+        column.resize(row_start[n]);
+        on_row_ranges(n,
+                      4,
+                      [&](const unsigned int begin, const unsigned int end) {
+                        for (unsigned int k = begin; k < end; ++k)
+                          {
+                            std::size_t e = row_start[k];
+                            for (auto it = pattern.begin(zero + k);
+                                 it != pattern.end(zero + k);
+                                 ++it)
+                              column[e++] = local_column(it->column());
+                          }
+                      });
+        std::vector<Number>().swap(value);
+        borrowed =
+          n > 0 ?
+            &const_cast<SparseMatrix<double> &>(matrix).diag_element(zero) :
+            nullptr;
       }
   }
 

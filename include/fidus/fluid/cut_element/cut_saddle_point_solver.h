@@ -251,7 +251,7 @@ namespace Fidus
     select_gap_pressures(const Layout &layout);
 
     /// With the multigrid on more than one rank: K's rows split among
-    /// the ranks (K itself is freed once they are copied), on which the
+    /// the ranks (read in place from K, which holds no other), on which the
     /// multigrid is built.
     void
     split_velocity_block(const Layout &layout);

@@ -8,6 +8,7 @@
 #include <deal.II/base/partitioner.h>
 #include <deal.II/base/subscriptor.h>
 #include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/sparse_matrix.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <functional>
 #include <memory>
@@ -80,6 +81,19 @@ namespace Fidus
          const Row      &row,
          const MPI_Comm  comm);
 
+    /**
+     * Become the rows @p owned_rows of the square @p matrix (its rows
+     * numbered as this matrix's global rows, the columns split as the
+     * rows), reading its values in place: only the local column numbers
+     * are stored here. The rows of @p matrix outside @p owned_rows are not
+     * read; @p matrix must outlive this object and keep its pattern and
+     * values. Number must be double. Collective on @p comm.
+     */
+    void
+    borrow(const IndexSet             &owned_rows,
+           const SparseMatrix<double> &matrix,
+           const MPI_Comm              comm);
+
     /// The same structure as @p other, its values converted to Number.
     template <typename OtherNumber>
     void
@@ -136,7 +150,7 @@ namespace Fidus
     for_row(const unsigned int k, const F &f) const
     {
       for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-        f(column[e], value[e]);
+        f(column[e], values()[e]);
     }
 
     /// The number of entries of local row @p k.
@@ -147,22 +161,23 @@ namespace Fidus
     }
 
     /// The diagonal entry of local row @p k of a square matrix.
+    /// (With borrow(), the borrowed matrix's entry.)
     Number &
     diag_element(const unsigned int k)
     {
-      return value[row_start[k]];
+      return const_cast<Number &>(values()[row_start[k]]);
     }
     Number
     diag_element(const unsigned int k) const
     {
-      return value[row_start[k]];
+      return values()[row_start[k]];
     }
 
     /// Entries stored on this rank.
     std::size_t
     n_local_entries() const
     {
-      return value.size();
+      return row_start.back();
     }
 
     /// dst = A src (dst over the row space, src over the column space).
@@ -244,6 +259,15 @@ namespace Fidus
     std::vector<std::size_t>  row_start{0};
     std::vector<unsigned int> column;
     std::vector<Number>       value;
+    /// With borrow(): the values of the first local row, in the borrowed
+    /// matrix (value is then empty).
+    const Number *borrowed = nullptr;
+    /// The values: value's, or the borrowed matrix's.
+    const Number *
+    values() const
+    {
+      return borrowed != nullptr ? borrowed : value.data();
+    }
     /// The import buffer, over the column partitioner.
     mutable VectorType ghosted;
   };
@@ -294,6 +318,7 @@ namespace Fidus
         row_start[k] + length[k] + (square && !has_diagonal[k] ? 1 : 0);
     std::vector<unsigned int>().swap(length);
     column.resize(row_start[n]);
+    borrowed = nullptr;
     value.assign(row_start[n], Number());
     on_row_ranges(n, 4, [&](const unsigned int begin, const unsigned int end) {
       for (unsigned int k = begin; k < end; ++k)
