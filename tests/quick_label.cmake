@@ -1,6 +1,6 @@
 # The quick subset (ctest -L quick, contrib/test.sh -L quick): the tests a
-# developer runs after every edit: 29 tests, 45 s on 2 cores with
-# everything built (measured 2026-11-29 at 9d15913). They cover each module at its cheapest: the contact
+# developer runs after every edit: 33 tests, 55 s on 2 cores with
+# everything built (measured 2026-12-04 at a1abc08; cli.bad_input is 53 s of it). They cover each module at its cheapest: the contact
 # library (KKT conditions, pair search, glue), the time loop through the
 # FluidModel interface with exact answers, the paper's 2D pair through the
 # program with the three contact models, the run state, the Uzawa loop on
