@@ -36,6 +36,54 @@ namespace Fidus
             for (unsigned int j = 0; j < n; ++j)
               a(i, j) += q(i, k) * q(j, k) / std::abs(eigenvalues[k]);
     }
+
+
+
+    /**
+     * The rows @p others of @p a (global indices that other ranks own,
+     * ascending), fetched from their owners, f(row, columns, values, n) as
+     * DistributedRows::for_rows_of_others() gives them; each owner sends
+     * of a row only the columns that one of @p blocks (every rank's) shares
+     * with it. Collective.
+     */
+    void
+    fetch_block_rows(const DistributedRows<double>                &a,
+                     const std::vector<std::vector<unsigned int>> &blocks,
+                     const std::vector<types::global_dof_index>   &others,
+                     const std::function<void(types::global_dof_index,
+                                              const types::global_dof_index *,
+                                              const double *,
+                                              std::size_t)>       &f)
+    {
+      using Index = types::global_dof_index;
+      // Which blocks hold each row (CSR over the global rows; every rank has
+      // the list), so that an owner sends of a row only the columns a block
+      // shares with it.
+      std::vector<std::size_t>  row_start(a.m() + 1, 0);
+      std::vector<unsigned int> block_of;
+      for (const auto &block : blocks)
+        for (const unsigned int g : block)
+          ++row_start[g + 1];
+      for (unsigned int i = 0; i < a.m(); ++i)
+        row_start[i + 1] += row_start[i];
+      block_of.resize(row_start[a.m()]);
+      {
+        std::vector<std::size_t> at(row_start.begin(), row_start.end() - 1);
+        for (unsigned int b = 0; b < blocks.size(); ++b)
+          for (const unsigned int g : blocks[b])
+            block_of[at[g]++] = b;
+      }
+      const auto share_a_block = [&](const Index i, const Index j) {
+        for (std::size_t e = row_start[i]; e < row_start[i + 1]; ++e)
+          {
+            const auto &block = blocks[block_of[e]];
+            if (std::find(block.begin(), block.end(), j) != block.end())
+              return true;
+          }
+        return false;
+      };
+      a.for_rows_of_others(others, f, share_a_block);
+    }
   } // namespace
 
 
@@ -107,49 +155,26 @@ namespace Fidus
                                                       n_rows;
     };
 
-    // Which blocks hold each row (CSR over the global rows; every rank has
-    // the list), so that an owner sends of a row only the columns a block
-    // shares with it.
-    std::vector<std::size_t>  row_start(a.m() + 1, 0);
-    std::vector<unsigned int> block_of;
-    for (const auto &block : blocks)
-      for (const unsigned int g : block)
-        ++row_start[g + 1];
-    for (unsigned int i = 0; i < a.m(); ++i)
-      row_start[i + 1] += row_start[i];
-    block_of.resize(row_start[a.m()]);
-    {
-      std::vector<std::size_t> at(row_start.begin(), row_start.end() - 1);
-      for (unsigned int b = 0; b < blocks.size(); ++b)
-        for (const unsigned int g : blocks[b])
-          block_of[at[g]++] = b;
-    }
-    const auto share_a_block = [&](const Index i, const Index j) {
-      for (std::size_t e = row_start[i]; e < row_start[i + 1]; ++e)
-        {
-          const auto &block = blocks[block_of[e]];
-          if (std::find(block.begin(), block.end(), j) != block.end())
-            return true;
-        }
-      return false;
-    };
-    // The other ranks' rows, in local numbering.
+    // The other ranks' rows, in local numbering (only where some rank's
+    // blocks hold another's rows: the exchange is collective).
     std::vector<std::vector<std::pair<unsigned int, double>>> fetched(
       others.size());
-    a.for_rows_of_others(
-      others,
-      [&](const Index       g,
-          const Index      *columns,
-          const double     *values,
-          const std::size_t length) {
-        auto &row = fetched[local(g) - n];
-        for (std::size_t e = 0; e < length; ++e)
-          if (local(columns[e]) < n_rows &&
-              (component.empty() ||
-               couples_within_component(component, g, columns[e])))
-            row.emplace_back(local(columns[e]), values[e]);
-      },
-      share_a_block);
+    if (exchange)
+      fetch_block_rows(
+        a,
+        blocks,
+        others,
+        [&](const Index       g,
+            const Index      *columns,
+            const double     *values,
+            const std::size_t length) {
+          auto &row = fetched[local(g) - n];
+          for (std::size_t e = 0; e < length; ++e)
+            if (local(columns[e]) < n_rows &&
+                (component.empty() ||
+                 couples_within_component(component, g, columns[e])))
+              row.emplace_back(local(columns[e]), values[e]);
+        });
     // The weights count every rank's blocks (each rank has the list).
     std::vector<unsigned int> count(n_rows, 0);
     for (const auto &block : blocks)

@@ -566,7 +566,6 @@ namespace Fidus
     if (split)
       Utilities::MPI::sum(k_diagonal, layout.communicator, k_diagonal);
     build_pressure_schur(pressure_mass, layout);
-    pressure_jacobi.initialize(pressure_schur);
     mean = layout.pressure_mean;
     const bool split_all =
       multigrid && Utilities::MPI::n_mpi_processes(layout.communicator) > 1;
@@ -576,7 +575,10 @@ namespace Fidus
         split_gap_laplacian(layout);
       }
     else
-      build_gap_laplacian(layout);
+      {
+        pressure_jacobi.initialize(pressure_schur);
+        build_gap_laplacian(layout);
+      }
     statistics.pressure_seconds = lap();
     // Everything read from the system is in the blocks now.
     if (multigrid && release)
@@ -597,6 +599,10 @@ namespace Fidus
     if (!multigrid)
       compute_rigid_schur();
 
+    // The whole vectors of system_vmult() and vmult(); with the split they
+    // work on the ranks' parts instead.
+    if (split_all)
+      return;
     r_u.reinit(multigrid ? n_u + n_v : n_u);
     y_u.reinit(multigrid ? n_u + n_v : n_u);
     r_p.reinit(n_p);
@@ -622,10 +628,7 @@ namespace Fidus
   {
     if (bt_rows)
       {
-        PartsVector parts = make_parts(), product = make_parts();
-        to_parts(src, parts);
-        split_system_vmult(product, parts);
-        from_parts(product, dst);
+        through_parts(dst, src, &CutSaddlePointSolver::split_system_vmult);
         return;
       }
     if (!multigrid)
@@ -665,10 +668,7 @@ namespace Fidus
   {
     if (bt_rows)
       {
-        PartsVector parts = make_parts(), product = make_parts();
-        to_parts(src, parts);
-        split_vmult(product, parts);
-        from_parts(product, dst);
+        through_parts(dst, src, &CutSaddlePointSolver::split_vmult);
         return;
       }
     // z_p = -S^-1 r_p, then r_K - B^T z_p.

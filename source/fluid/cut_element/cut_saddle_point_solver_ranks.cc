@@ -109,7 +109,6 @@ namespace Fidus
     blocks->bt_pattern.reinit(0, 0, 0);
     blocks->b_pattern.reinit(0, 0, 0);
     blocks->p_pattern.reinit(0, 0, 0);
-    pressure_jacobi.clear();
     pressure_schur.clear();
     pressure_sparsity.reinit(0, 0, 0);
   }
@@ -127,12 +126,8 @@ namespace Fidus
       return;
     const MPI_Comm     communicator = layout.communicator;
     const unsigned int n_u          = velocity.size();
-    const unsigned int k_first      = k_owned.n_elements() > 0 ?
-                                        k_owned.nth_index_in_set(0) :
-                                        0,
-                       p_first      = p_owned.n_elements() > 0 ?
-                                        p_owned.nth_index_in_set(0) :
-                                        0;
+    const unsigned int k_first      = bt_rows->first_row(),
+                       p_first      = p_rows->first_row();
     // This rank's gap pressures are those of its range of the pressures:
     // consecutive among them, in the ranks' order.
     const unsigned int g_first =
@@ -232,11 +227,9 @@ namespace Fidus
   CutSaddlePointSolver<dim>::to_parts(const Vector<double> &whole,
                                       PartsVector          &parts) const
   {
-    const unsigned int n_u = velocity.size();
-    const unsigned int k_first =
-      k_owned.n_elements() > 0 ? k_owned.nth_index_in_set(0) : 0;
-    const unsigned int p_first =
-      p_owned.n_elements() > 0 ? p_owned.nth_index_in_set(0) : 0;
+    const unsigned int n_u     = velocity.size();
+    const unsigned int k_first = bt_rows->first_row(),
+                       p_first = p_rows->first_row();
     for (unsigned int k = 0; k < k_owned.n_elements(); ++k)
       {
         const unsigned int j = k_first + k;
@@ -254,12 +247,10 @@ namespace Fidus
   CutSaddlePointSolver<dim>::from_parts(const PartsVector &parts,
                                         Vector<double>    &whole) const
   {
-    const unsigned int n_u = velocity.size();
-    const unsigned int k_first =
-      k_owned.n_elements() > 0 ? k_owned.nth_index_in_set(0) : 0;
-    const unsigned int p_first =
-      p_owned.n_elements() > 0 ? p_owned.nth_index_in_set(0) : 0;
-    whole = 0.;
+    const unsigned int n_u     = velocity.size();
+    const unsigned int k_first = bt_rows->first_row(),
+                       p_first = p_rows->first_row();
+    whole                      = 0.;
     for (unsigned int k = 0; k < k_owned.n_elements(); ++k)
       {
         const unsigned int j = k_first + k;
@@ -269,6 +260,22 @@ namespace Fidus
     for (unsigned int k = 0; k < p_owned.n_elements(); ++k)
       whole[pressure[p_first + k]] = parts.block(1).local_element(k);
     Utilities::MPI::sum(whole, k_rows->get_mpi_communicator(), whole);
+  }
+
+
+
+  template <int dim>
+  void
+  CutSaddlePointSolver<dim>::through_parts(
+    Vector<double>       &dst,
+    const Vector<double> &src,
+    void (CutSaddlePointSolver::*op)(PartsVector &, const PartsVector &)
+      const) const
+  {
+    PartsVector parts = make_parts(), product = make_parts();
+    to_parts(src, parts);
+    (this->*op)(product, parts);
+    from_parts(product, dst);
   }
 
 
@@ -406,6 +413,12 @@ namespace Fidus
   CutSaddlePointSolver<2>::from_parts(const PartsVector &,
                                       Vector<double> &) const;
   template void
+  CutSaddlePointSolver<2>::through_parts(
+    Vector<double> &,
+    const Vector<double> &,
+    void (CutSaddlePointSolver<2>::*)(PartsVector &, const PartsVector &)
+      const) const;
+  template void
   CutSaddlePointSolver<2>::split_system_vmult(PartsVector &,
                                               const PartsVector &) const;
   template void
@@ -434,6 +447,12 @@ namespace Fidus
   template void
   CutSaddlePointSolver<3>::from_parts(const PartsVector &,
                                       Vector<double> &) const;
+  template void
+  CutSaddlePointSolver<3>::through_parts(
+    Vector<double> &,
+    const Vector<double> &,
+    void (CutSaddlePointSolver<3>::*)(PartsVector &, const PartsVector &)
+      const) const;
   template void
   CutSaddlePointSolver<3>::split_system_vmult(PartsVector &,
                                               const PartsVector &) const;

@@ -287,6 +287,14 @@ namespace Fidus
     /// The whole vector @p whole from every rank's @p parts (collective).
     void
     from_parts(const PartsVector &parts, Vector<double> &whole) const;
+    /// dst = @p op(src) for whole vectors, through this rank's parts
+    /// (system_vmult() and vmult() with the split).
+    void
+    through_parts(Vector<double>       &dst,
+                  const Vector<double> &src,
+                  void (CutSaddlePointSolver::*op)(PartsVector &,
+                                                   const PartsVector &)
+                    const) const;
     /// system_vmult() on the ranks' rows.
     void
     split_system_vmult(PartsVector &dst, const PartsVector &src) const;
