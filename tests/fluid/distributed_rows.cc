@@ -14,10 +14,14 @@
 //   boolean product of P^T, A and P) and every diagonal entry, first in its
 //   row (the multigrid sets a unit diagonal where the product's is zero),
 //   for a symmetric and an unsymmetric A, and with A read without the
-//   couplings between components (component = i mod 3, some rows rigid).
+//   couplings between components (component = i mod 3, some rows rigid);
+// - P^T x of a P large enough (200 000 rows) for the transposed product
+//   to scatter several row ranges into buffers of their own: to 1e-14 of
+//   the serial product, and the same to the bit on one thread and on two.
 
 #include "../fidus_test.h"
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
@@ -327,6 +331,37 @@ namespace
         check_range(what + "size", c_rows.m() == m ? 1 : 0, 1, 1);
       }
   }
+
+  /// P^T x with P's rows in several ranges per rank (see the header).
+  void
+  check_large_transposed(std::mt19937 &random)
+  {
+    const unsigned int   n = 200000, m = 30000;
+    SparsityPattern      pattern;
+    SparseMatrix<double> p;
+    random_matrix(n, m, 6, false, random, pattern, p);
+    const IndexSet          fine   = uneven_range(n, false);
+    const IndexSet          coarse = uneven_range(m, true);
+    DistributedRows<double> p_rows;
+    distribute(p, fine, coarse, p_rows);
+    Vector<double>                         x(n), y(m);
+    std::uniform_real_distribution<double> value(-1., 1.);
+    for (auto &v : x)
+      v = value(random);
+    p.Tvmult(y, x);
+    LinearAlgebra::distributed::Vector<double> one(coarse, MPI_COMM_WORLD),
+      two(one);
+    MultithreadInfo::set_thread_limit(1);
+    p_rows.Tvmult(one, distributed<double>(x, fine));
+    MultithreadInfo::set_thread_limit(2);
+    p_rows.Tvmult(two, distributed<double>(x, fine));
+    check_range("large P^T x", error(two, y), 0., 1e-14);
+    two -= one;
+    check_range("large P^T x, on two threads against one",
+                two.linfty_norm(),
+                0.,
+                0.);
+  }
 } // namespace
 
 int
@@ -336,5 +371,6 @@ main(int argc, char **argv)
   std::mt19937                     random(11);
   check("unsymmetric A", false, random);
   check("symmetric A", true, random);
+  check_large_transposed(random);
   return exit_code();
 }

@@ -6,6 +6,7 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
+#include <fidus/fluid/cut_element/transposed_vmult.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
 #include <sstream>
 #include <stdexcept>
@@ -174,10 +175,8 @@ namespace Fidus
                   velocity_and_rigid,
                   block(of_k, n_u + n_v, blocks->k_pattern, velocity_matrix),
                   transposed_divergence);
-        copy_rows(*matrix,
-                  pressure,
-                  block(of_k, n_u + n_v, blocks->b_pattern, divergence),
-                  pressures);
+        // B is read as B^T's transpose.
+        copy_rows(*matrix, pressure, pressures);
       }
     else
       {
@@ -481,7 +480,6 @@ namespace Fidus
     , blocks(std::make_unique<CutSystemBlocks>())
     , velocity_matrix(blocks->k)
     , coupling(blocks->bt)
-    , divergence(blocks->b)
     , pressure_block(blocks->p)
     , multigrid(multigrid)
   {
@@ -506,7 +504,6 @@ namespace Fidus
     , blocks(std::move(system_blocks))
     , velocity_matrix(blocks->k)
     , coupling(blocks->bt)
-    , divergence(blocks->b)
     , pressure_block(blocks->p)
     , multigrid(&multigrid)
   {
@@ -645,8 +642,18 @@ namespace Fidus
           x_p[k] = src[pressure[k]];
         velocity_matrix.vmult(y_k, x_k);
         coupling.vmult_add(y_k, x_p);
-        divergence.vmult(y_p, x_k);
-        pressure_block.vmult_add(y_p, x_p);
+        pressure_block.vmult(y_p, x_p);
+        transposed_vmult_add(
+          coupling.m(),
+          coupling.n(),
+          [this](const unsigned int k, const auto &f) {
+            for (auto it = coupling.begin(k), end = coupling.end(k); it != end;
+                 ++it)
+              f(it->column(), it->value());
+          },
+          x_k.begin(),
+          y_p.begin(),
+          transposed_scratch);
         for (unsigned int k = 0; k < n_u; ++k)
           dst[velocity[k]] = y_k[k];
         for (unsigned int k = 0; k < rigid.size(); ++k)

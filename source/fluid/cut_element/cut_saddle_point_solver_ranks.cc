@@ -68,8 +68,6 @@ namespace Fidus
     const unsigned int k_first = layout.k_first;
     bt_rows                    = std::make_unique<DistributedRows<double>>();
     bt_rows->fill(k_owned, p_owned, rows_of(coupling, k_first), communicator);
-    b_rows = std::make_unique<DistributedRows<double>>();
-    b_rows->fill(p_owned, k_owned, rows_of(divergence, p_first), communicator);
     p_rows = std::make_unique<DistributedRows<double>>();
     p_rows->fill(p_owned,
                  p_owned,
@@ -104,10 +102,8 @@ namespace Fidus
     // The whole blocks are read no more (split_gap_laplacian() reads the
     // rows).
     coupling.clear();
-    divergence.clear();
     pressure_block.clear();
     blocks->bt_pattern.reinit(0, 0, 0);
-    blocks->b_pattern.reinit(0, 0, 0);
     blocks->p_pattern.reinit(0, 0, 0);
     pressure_schur.clear();
     pressure_sparsity.reinit(0, 0, 0);
@@ -285,12 +281,12 @@ namespace Fidus
   CutSaddlePointSolver<dim>::split_system_vmult(PartsVector       &dst,
                                                 const PartsVector &src) const
   {
-    // [K B^T; B P] [x_K; x_p], and the rank-one term that fixes the
-    // pressure's mean.
+    // [K B^T; B P] [x_K; x_p] (B as B^T's transpose), and the rank-one
+    // term that fixes the pressure's mean.
     k_rows->vmult(dst.block(0), src.block(0));
     bt_rows->vmult_add(dst.block(0), src.block(1));
-    b_rows->vmult(dst.block(1), src.block(0));
-    p_rows->vmult_add(dst.block(1), src.block(1));
+    p_rows->vmult(dst.block(1), src.block(1));
+    bt_rows->Tvmult_add(dst.block(1), src.block(0));
     if (mean_part.size() > 0)
       dst.block(1).add(-(mean_part * src.block(1)), mean_part);
   }

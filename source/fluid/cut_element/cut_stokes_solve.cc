@@ -356,10 +356,11 @@ namespace Fidus
       add_rigid({p});
     for (const auto &c : s.couplings)
       add_rigid(c.owners);
-    // With K's rows split, a rank keeps of the velocity rows it does not
-    // hold their pressure columns only (Bᵀ, whole on every rank): K's
-    // entries there, most of the system, are not built.
-    elements.build(sparsity, velocity_rows_not_held(), is_pressure);
+    // With the system as blocks, the pressure rows keep their pressure
+    // columns only (B is Bᵀ's transpose); with K's rows split, a rank also
+    // keeps of the velocity rows it does not hold their pressure columns
+    // only: K's entries there, most of the system, are not built.
+    elements.build(sparsity, partial_rows(), is_pressure);
     count_entries();
   }
 
@@ -379,14 +380,13 @@ namespace Fidus
     // constrained matrix no longer has.
     if (periodic)
       make_wall_rows();
-    // On more ranks the iterative solver with the multigrid splits K's
-    // rows among them, each rank holding a range (K numbers the velocities
-    // in the system's order, then the rigid unknowns), and the rigid rows,
-    // Bᵀ, B and P whole (summed over the ranks).
-    split_rows =
-      iterative &&
-      s.velocity_preconditioner == VelocityPreconditioner::multigrid &&
-      n_ranks > 1;
+    // On more ranks the iterative solver with the multigrid splits K's and
+    // Bᵀ's rows among them, each rank holding a range (K numbers the
+    // velocities in the system's order, then the rigid unknowns), and the
+    // rigid rows and P whole (summed over the ranks).
+    as_blocks = iterative &&
+                s.velocity_preconditioner == VelocityPreconditioner::multigrid;
+    split_rows = as_blocks && n_ranks > 1;
     if (split_rows)
       {
         const unsigned int n_k =
@@ -406,17 +406,17 @@ namespace Fidus
 
   template <int dim>
   std::vector<bool>
-  CutStokesSolve<dim>::velocity_rows_not_held() const
+  CutStokesSolve<dim>::partial_rows() const
   {
-    std::vector<bool> not_held;
-    if (!split_rows)
-      return not_held;
-    not_held.assign(n_total, false);
+    std::vector<bool> partial;
+    if (!as_blocks)
+      return partial;
+    partial.assign(n_total, false);
     // The walls' rows are read whole (make_wall_pattern()).
     for (unsigned int i = 0; i < n_fluid; ++i)
-      not_held[i] = !is_pressure[i] && !held_velocity_rows[i] &&
-                    !(periodic && wall_rows[i]);
-    return not_held;
+      partial[i] = is_pressure[i] || (split_rows && !held_velocity_rows[i] &&
+                                      !(periodic && wall_rows[i]));
+    return partial;
   }
 
   template <int dim>
@@ -424,22 +424,23 @@ namespace Fidus
   CutStokesSolve<dim>::count_entries()
   {
     result.n_entries = sparsity.n_nonzero_elements();
-    if (!split_rows)
+    if (!as_blocks)
       return;
-    // The whole system's entries, as one rank would hold them: K's in this
-    // rank's velocity rows, summed over the ranks, and the rest (the
-    // velocity rows' pressure columns, the pressure and rigid rows), which
-    // every rank holds alike.
+    // The whole system's entries, as one rank would hold them: those of
+    // this rank's velocity rows, summed over the ranks, and those of the
+    // pressure and rigid rows, which every rank holds alike; B's, which
+    // the pattern leaves out, counted as their transposes in Bᵀ.
     std::uint64_t own = 0, shared = 0;
     for (unsigned int i = 0; i < n_total; ++i)
       {
         const bool velocity = i < n_fluid && !is_pressure[i];
+        if (velocity && split_rows && !held_velocity_rows[i])
+          continue;
         for (auto it = sparsity.begin(i); it != sparsity.end(i); ++it)
           {
-            if (!velocity || is_pressure[it->column()])
-              ++shared;
-            else if (held_velocity_rows[i])
-              ++own;
+            const unsigned int in_b =
+              i < n_fluid && is_pressure[i] ? 0 : is_pressure[it->column()];
+            (velocity ? own : shared) += 1 + in_b;
           }
       }
     result.n_entries = Utilities::MPI::sum(own, s.communicator) + shared;
@@ -459,8 +460,7 @@ namespace Fidus
     // The iterative solver with the multigrid keeps the system as its
     // blocks: assembled into them, it is never held whole (the system and
     // its blocks side by side were the solve's peak).
-    if (iterative &&
-        s.velocity_preconditioner == VelocityPreconditioner::multigrid)
+    if (as_blocks)
       {
         std::vector<unsigned char> kind(n_total, 2);
         for (unsigned int i = 0; i < n_fluid; ++i)
@@ -522,16 +522,39 @@ namespace Fidus
           const double d = std::abs(system_diagonal(i));
           scale[i]       = d > 0. ? 1. / std::sqrt(d) : 1.;
         }
+    // A pressure's: its diagonal and its row of B weighed by the velocity
+    // scales, read from the matrix's row, or as Bᵀ's column from the
+    // blocks (over the ranks' rows of Bᵀ with the split; the diagonal and
+    // the rigid rows, which every rank holds, counted once).
+    Vector<double> schur(n_total);
     for (unsigned int i = 0; i < n_total; ++i)
-      if (is_pressure[i])
-        {
-          double schur = std::abs(system_diagonal(i));
+      if (is_pressure[i] && (!split_rows || this_rank == 0))
+        schur[i] = std::abs(system_diagonal(i));
+    if (as_blocks)
+      {
+        const SparseMatrix<double> &bt = blocks->bt;
+        for (unsigned int r = 0; r < bt.m(); ++r)
+          {
+            const unsigned int i = blocks->k_rows[r];
+            if (i >= n_fluid && split_rows && this_rank != 0)
+              continue;
+            for (auto it = bt.begin(r), end = bt.end(r); it != end; ++it)
+              schur[blocks->p_rows[it->column()]] +=
+                it->value() * it->value() * scale[i] * scale[i];
+          }
+        if (split_rows)
+          Utilities::MPI::sum(schur, s.communicator, schur);
+      }
+    else
+      for (unsigned int i = 0; i < n_total; ++i)
+        if (is_pressure[i])
           for_row(i, [&](const unsigned int j, const double value) {
             if (!is_pressure[j])
-              schur += value * value * scale[j] * scale[j];
+              schur[i] += value * value * scale[j] * scale[j];
           });
-          scale[i] = schur > 0. ? 1. / std::sqrt(schur) : 1.;
-        }
+    for (unsigned int i = 0; i < n_total; ++i)
+      if (is_pressure[i])
+        scale[i] = schur[i] > 0. ? 1. / std::sqrt(schur[i]) : 1.;
     if (split_rows)
       for (unsigned int i = 0; i < n_total; ++i)
         velocity_diagonal[i] *= scale[i] * scale[i];

@@ -233,10 +233,12 @@ namespace Fidus
     void
     choose_solver();
 
-    /// With K's rows split: the velocity rows this rank does not hold
-    /// (flagged, by system index); empty otherwise.
+    /// With the system as blocks: the rows of which the pattern keeps the
+    /// pressure columns only (flagged, by system index): the pressure rows
+    /// (B is not held) and, with K's rows split, the velocity rows this
+    /// rank does not hold but for the walls'; empty otherwise.
     std::vector<bool>
-    velocity_rows_not_held() const;
+    partial_rows() const;
 
     /// The sparsity pattern of the fluid, rigid and ghost-penalty
     /// couplings (with K's rows split, of this rank's K rows only).
@@ -630,8 +632,9 @@ namespace Fidus
     /// any is not zero.
     std::array<std::array<Vector<double>, dim>, 2> wall_phi;
     std::vector<bool>                              wall_rows;
-    /// Whether the system is solved iteratively.
-    bool iterative = false;
+    /// Whether the system is solved iteratively, and whether as the blocks
+    /// of CutSystemBlocks (with the multigrid).
+    bool iterative = false, as_blocks = false;
     /// On more than one rank with the multigrid: K's velocity rows split
     /// among the ranks, each holding the range [k_first, k_end) of K's
     /// rows (CutSystemBlocks::reinit()); and the velocity rows' diagonal,

@@ -524,27 +524,24 @@ namespace Fidus
       return;
     if (split_rows)
       {
-        // K's velocity rows are each held whole by one rank; its rigid
-        // rows (last in K, on the same pattern on every rank) are summed.
-        for (SparseMatrix<double> *block :
-             {&blocks->bt, &blocks->b, &blocks->p})
-          Utilities::MPI::sum(*block, s.communicator, *block);
+        // K's and Bᵀ's velocity rows are each held whole by one rank; their
+        // rigid rows (last, on the same pattern on every rank) are summed,
+        // and P.
+        Utilities::MPI::sum(blocks->p, s.communicator, blocks->p);
         const unsigned int  n_v = particles.size() * n_rigid;
         const unsigned int  n_k = blocks->k.m();
         std::vector<double> rigid_values;
-        for (unsigned int r = n_k - n_v; r < n_k; ++r)
-          for (auto it = blocks->k.begin(r); it != blocks->k.end(r); ++it)
-            rigid_values.push_back(it->value());
+        const auto          for_rigid_entries = [&](const auto &f) {
+          for (SparseMatrix<double> *block : {&blocks->k, &blocks->bt})
+            for (unsigned int r = n_k - n_v; r < n_k; ++r)
+              for (auto it = block->begin(r); it != block->end(r); ++it)
+                f(it->value());
+        };
+        for_rigid_entries([&](double v) { rigid_values.push_back(v); });
         Utilities::MPI::sum(rigid_values, s.communicator, rigid_values);
         std::size_t at = 0;
-        for (unsigned int r = n_k - n_v; r < n_k; ++r)
-          for (auto it = blocks->k.begin(r); it != blocks->k.end(r); ++it)
-            it->value() = rigid_values[at++];
+        for_rigid_entries([&](auto &&v) { v = rigid_values[at++]; });
       }
-    else if (blocks)
-      for (SparseMatrix<double> *block :
-           {&blocks->k, &blocks->bt, &blocks->b, &blocks->p})
-        Utilities::MPI::sum(*block, s.communicator, *block);
     else
       Utilities::MPI::sum(matrix, s.communicator, matrix);
     if (iterative)

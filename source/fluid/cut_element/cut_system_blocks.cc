@@ -45,12 +45,13 @@ namespace Fidus
       }
 
     // Each block's pattern from the system's rows: a column of K's kinds
-    // goes to K or B, a pressure column to B^T or P. The system's rows
-    // hold their diagonal first, then ascending columns, and the maps keep
-    // the order, so each block's row comes out in order: one pass counts,
-    // one writes, nothing is sorted.
+    // in a row of K goes to K, a pressure column to B^T or P; a pressure
+    // row's columns of K's kinds (B) are not kept. The system's rows hold
+    // their diagonal first, then ascending columns, and the maps keep the
+    // order, so each block's row comes out in order: one pass counts, one
+    // writes, nothing is sorted.
     // A velocity row of K this rank does not hold keeps its diagonal
-    // alone (a square pattern's).
+    // alone in K (a square pattern's), and nothing in B^T.
     const auto k_held = [&](const unsigned int i) {
       return kind[i] != 0 || (local[i] >= k_first && local[i] < k_end);
     };
@@ -68,14 +69,14 @@ namespace Fidus
       const bool                on_k   = square && !pressure_columns;
       std::vector<unsigned int> lengths(rows.size());
       for (unsigned int r = 0; r < rows.size(); ++r)
-        lengths[r] = on_k && !k_held(rows[r]) ?
-                       1 :
+        lengths[r] = !k_held(rows[r]) ?
+                       (on_k ? 1 : 0) :
                        (pressure_columns ? p_lengths : k_lengths)[rows[r]];
       pattern.fill_ordered(rows.size(),
                            n_columns,
                            lengths,
                            [&](const unsigned int r, unsigned int *columns) {
-                             if (on_k && !k_held(rows[r]))
+                             if (!k_held(rows[r]))
                                return;
                              for (auto it  = system.begin(rows[r]),
                                        end = system.end(rows[r]);
@@ -93,11 +94,9 @@ namespace Fidus
     };
     block_pattern(k_pattern, k_rows, k_rows.size(), false);
     block_pattern(bt_pattern, k_rows, p_rows.size(), true);
-    block_pattern(b_pattern, p_rows, k_rows.size(), false);
     block_pattern(p_pattern, p_rows, p_rows.size(), true);
     k.reinit(k_pattern);
     bt.reinit(bt_pattern);
-    b.reinit(b_pattern);
     p.reinit(p_pattern);
   }
 
@@ -131,11 +130,11 @@ namespace Fidus
                             const bool       col_indices_are_sorted,
                             const bool       summed_rows)
   {
-    // K's velocity rows: where this rank holds them; everything else: from
-    // the cells whose sum over the ranks is the system.
-    const bool to_k  = kind[row] == 0 ? owns_velocity_row(row) : summed_rows;
-    const bool to_bt = summed_rows;
-    if (!to_k && !to_bt)
+    // The velocity rows of K and B^T: where this rank holds them, from
+    // every cell that writes them; the rigid rows and P: from the cells
+    // whose sum over the ranks is the system. B, a pressure row's columns
+    // of K's kinds, is B^T's transpose and not held.
+    if (!(kind[row] == 0 ? owns_velocity_row(row) : summed_rows))
       return;
     // Called from several threads at once (on rows no other thread
     // writes): the split row is the caller's thread's own.
@@ -145,6 +144,7 @@ namespace Fidus
     p_columns.clear();
     k_values.clear();
     p_values.clear();
+    const bool on_k = kind[row] != 1;
     for (size_type c = 0; c < n_columns; ++c)
       {
         const size_type j = columns[c];
@@ -153,24 +153,22 @@ namespace Fidus
             p_columns.push_back(local[j]);
             p_values.push_back(values[c]);
           }
-        else
+        else if (on_k)
           {
             k_columns.push_back(local[j]);
             k_values.push_back(values[c]);
           }
       }
-    const bool on_k = kind[row] != 1;
     // The maps keep the order within each kind (see the class's
     // documentation), so sorted columns stay sorted.
-    if (!k_columns.empty() && to_k)
-      (on_k ? k : b)
-        .add(local[row],
-             k_columns.size(),
-             k_columns.data(),
-             k_values.data(),
-             elide_zero_values,
-             col_indices_are_sorted);
-    if (!p_columns.empty() && to_bt)
+    if (!k_columns.empty())
+      k.add(local[row],
+            k_columns.size(),
+            k_columns.data(),
+            k_values.data(),
+            elide_zero_values,
+            col_indices_are_sorted);
+    if (!p_columns.empty())
       (on_k ? bt : p)
         .add(local[row],
              p_columns.size(),

@@ -4,6 +4,7 @@
 #include <deal.II/base/parallel.h>
 #include <fidus/fluid/cut_element/distributed_rows.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
+#include <fidus/fluid/cut_element/transposed_vmult.h>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -195,15 +196,23 @@ namespace Fidus
   DistributedRows<Number>::Tvmult_add(VectorType       &dst,
                                       const VectorType &src) const
   {
-    // Each row scatters into its columns: the ghost columns' sums go to
-    // their owners, which add them to their own.
+    // Each row scatters into its columns (on the threads, the same sums
+    // on any number of them): the ghost columns' sums go to their owners,
+    // which add them to their own.
     Number *y = import ? ghosted.begin() : dst.begin();
     if (import)
       ghosted = Number();
-    const Number *x = src.begin();
-    for (unsigned int k = 0; k < local_rows(); ++k)
-      for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
-        y[column[e]] += values()[e] * x[k];
+    const Number *v = values();
+    transposed_vmult_add(
+      local_rows(),
+      partitioner->locally_owned_size() + partitioner->n_ghost_indices(),
+      [&](const unsigned int k, const auto &f) {
+        for (std::size_t e = row_start[k]; e < row_start[k + 1]; ++e)
+          f(column[e], v[e]);
+      },
+      src.begin(),
+      y,
+      transposed_scratch);
     if (!import)
       return;
     ghosted.compress(VectorOperation::add);

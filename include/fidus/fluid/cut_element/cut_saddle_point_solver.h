@@ -324,8 +324,7 @@ namespace Fidus
                const double          tolerance,
                const unsigned int    max_iterations,
                const bool            from_x);
-    std::unique_ptr<DistributedRows<double>> k_rows, bt_rows, b_rows, p_rows,
-      s_rows;
+    std::unique_ptr<DistributedRows<double>> k_rows, bt_rows, p_rows, s_rows;
     /// This rank's ranges of K's rows and of the pressures.
     IndexSet k_owned, p_owned;
     /// S's inverse diagonal and m, on this rank's pressures.
@@ -348,14 +347,15 @@ namespace Fidus
     /// each unknown's index within its kind.
     std::vector<unsigned int> velocity, pressure, rigid, local;
     /// The system's blocks, and the names the solver gives them: A_uu (K
-    /// with the multigrid), B^T (rows: velocities, then rigid unknowns),
-    /// B (columns: velocities, then rigid unknowns; with the multigrid
-    /// only) and the system's pressure block.
+    /// with the multigrid), B^T (rows: velocities, then rigid unknowns)
+    /// and the system's pressure block. B is not held: the system is
+    /// symmetric, and B's products are B^T's transposed ones.
     std::unique_ptr<CutSystemBlocks> blocks;
-    SparseMatrix<double>            &velocity_matrix, &coupling, &divergence,
-      &pressure_block;
-    RowPattern      rigid_sparsity;
-    SparsityPattern pressure_sparsity;
+    SparseMatrix<double> &velocity_matrix, &coupling, &pressure_block;
+    /// The row ranges' buffers of B's products (transposed_vmult_add()).
+    mutable std::vector<double> transposed_scratch;
+    RowPattern                  rigid_sparsity;
+    SparsityPattern             pressure_sparsity;
     /// S; A_Vu (without the multigrid).
     SparseMatrix<double>                     pressure_schur, rigid_coupling;
     TrilinosWrappers::SparseMatrix           velocity_trilinos;

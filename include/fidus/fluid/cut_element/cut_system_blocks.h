@@ -14,13 +14,17 @@ namespace Fidus
 
   /**
    * The cut finite element's system as its iterative solver with the
-   * velocity multigrid keeps it (CutSaddlePointSolver): four blocks,
+   * velocity multigrid keeps it (CutSaddlePointSolver): three blocks,
    *
    *   K = [A_uu A_uV; A_Vu A_VV]   (rows and columns: the fluid
    *                                  velocities, then the rigid unknowns)
    *   B^T                           (rows as K, columns the pressures)
-   *   B                             (rows the pressures, columns as K)
    *   P                             (the pressure block, -C)
+   *
+   * of the symmetric system [K B^T; B P]. B, the pressure rows' columns of
+   * K's kinds, is B^T's transpose and is not held: what is added there is
+   * dropped (the solver multiplies by B^T's transpose): it held as many
+   * entries as B^T, and on more ranks every rank held it whole.
    *
    * assembled directly: AffineConstraints::distribute_local_to_global()
    * writes into an object of this class as into one matrix of the
@@ -33,9 +37,9 @@ namespace Fidus
    * unknowns are numbered after the fluid's, so each block's row keeps its
    * columns in ascending order and an added row is walked once.
    *
-   * On more than one rank (the second reinit()) a rank's K holds only its
-   * own velocity rows, each assembled whole there, and the rest is summed
-   * over the ranks' shares of the cells (Part).
+   * On more than one rank (the second reinit()) a rank's K and B^T hold
+   * only its own velocity rows, each assembled whole there, and the rigid
+   * rows and P are summed over the ranks' shares of the cells (Part).
    */
   class CutSystemBlocks
   {
@@ -58,11 +62,11 @@ namespace Fidus
            const std::vector<unsigned char> &kind);
 
     /**
-     * The same for a rank of several that share the solve: K holds only
-     * the velocity rows numbered @p k_first to @p k_end - 1 within K (the
-     * rows this rank owns; the others keep an empty diagonal), and the
-     * rigid rows, Bᵀ, B and P whole (summed over the ranks' shares of the
-     * cells). Write into it through Part.
+     * The same for a rank of several that share the solve: K and Bᵀ hold
+     * only the velocity rows numbered @p k_first to @p k_end - 1 within K
+     * (the rows this rank owns; the others keep an empty diagonal in K and
+     * nothing in Bᵀ), and the rigid rows and P whole (summed over the
+     * ranks' shares of the cells). Write into it through Part.
      */
     void
     reinit(const SparsityPattern            &system,
@@ -80,9 +84,9 @@ namespace Fidus
 
     /**
      * What one cell or face adds with the split K: its entries in the
-     * velocity rows this rank owns always; with @p summed_rows (the cell
-     * is in this rank's share, whose sum over the ranks is the system)
-     * also those of Bᵀ, B, P and the rigid rows. A matrix to
+     * velocity rows this rank owns (K's and Bᵀ's) always; with
+     * @p summed_rows (the cell is in this rank's share, whose sum over the
+     * ranks is the system) also those of P and the rigid rows. A matrix to
      * AffineConstraints::distribute_local_to_global() as CutSystemBlocks
      * is.
      */
@@ -177,14 +181,15 @@ namespace Fidus
     diag_element(const size_type i) const;
 
     /**
-     * f(j, value) on the entries of the system's row @p i, with j the
-     * system's column; value is the block's entry (assignable).
+     * f(j, value) on the entries held of the system's row @p i (a
+     * pressure row's of P only), with j the system's column; value is the
+     * block's entry (assignable).
      */
     template <typename F>
     void
     for_row(const size_type i, const F &f);
 
-    /// The rows of K (velocities, then rigid unknowns) and of B and P
+    /// The rows of K and Bᵀ (velocities, then rigid unknowns) and of P
     /// (pressures), by their system index.
     std::vector<unsigned int> k_rows, p_rows;
     /// The velocity rows of K held (all without the split).
@@ -193,8 +198,8 @@ namespace Fidus
     std::vector<unsigned char> kind;
     std::vector<unsigned int>  local;
     /// The blocks and their patterns.
-    RowPattern           k_pattern, bt_pattern, b_pattern, p_pattern;
-    SparseMatrix<double> k, bt, b, p;
+    RowPattern           k_pattern, bt_pattern, p_pattern;
+    SparseMatrix<double> k, bt, p;
   };
 
 
@@ -203,7 +208,6 @@ namespace Fidus
   void
   CutSystemBlocks::for_row(const size_type i, const F &f)
   {
-    const bool on_k = kind[i] != 1;
     const auto walk = [&](SparseMatrix<double>            &block,
                           const std::vector<unsigned int> &columns) {
       for (auto it = block.begin(local[i]), end = block.end(local[i]);
@@ -211,8 +215,9 @@ namespace Fidus
            ++it)
         f(columns[it->column()], it->value());
     };
-    walk(on_k ? k : b, k_rows);
-    walk(on_k ? bt : p, p_rows);
+    if (kind[i] != 1)
+      walk(k, k_rows);
+    walk(kind[i] != 1 ? bt : p, p_rows);
   }
 } // namespace Fidus
 

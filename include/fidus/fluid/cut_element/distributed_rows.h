@@ -270,6 +270,8 @@ namespace Fidus
     }
     /// The import buffer, over the column partitioner.
     mutable VectorType ghosted;
+    /// The row ranges' buffers of Tvmult() (transposed_vmult_add()).
+    mutable std::vector<Number> transposed_scratch;
   };
 
   template <typename Number>
