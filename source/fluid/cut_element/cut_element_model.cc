@@ -52,8 +52,8 @@ namespace Fidus
           "multigrid and its iterations among them, but every rank builds "
           "the whole mesh, so on one machine one rank with the machine's "
           "cores as threads is faster and holds less in all (one sphere at "
-          "a/h = 3.2 on a 2-core machine: 3.1-3.2 s and 0.73 GB per rank on 2 "
-          "ranks against 2.9 s and 1.07 GB on one, per "
+          "a/h = 3.2 on a 2-core machine: 3.0-3.2 s and 0.67 GB per rank on 2 "
+          "ranks against 2.8-2.9 s and 1.04 GB on one, per "
           "solve; doc/theory/cut_element.md, 'Solvers'): run fidus on one "
           "rank, or set 'Fluid/Cut linear solver' by hand to keep the "
           "ranks without this warning",
