@@ -395,6 +395,9 @@ namespace Fidus
       bool                                 fluid = false, share = true;
       FullMatrix<double>                   local, local_pressure;
       std::vector<types::global_dof_index> ext_dofs;
+      /// With the split: the other ranks whose velocity rows the cell
+      /// writes, which receive its matrix instead of integrating it.
+      const std::vector<unsigned int> *destinations = nullptr;
     };
 
     /// What one thread needs to assemble ghost-penalty faces.
@@ -475,6 +478,23 @@ namespace Fidus
     /// the unknowns @p dofs writes a velocity row of K this rank holds.
     bool
     writes_held_rows(const std::vector<types::global_dof_index> &dofs) const;
+
+    /// With the split K: the other ranks that hold velocity rows of K that
+    /// adding @p cell writes (rows_written()), ascending.
+    std::vector<unsigned int>
+    border_destinations(const cell_iterator &cell) const;
+
+    /// Cut cells' matrices sent to another rank: their extended DoFs
+    /// (n_ext each), then their n_ext × n_ext matrices.
+    using PackedCells =
+      std::pair<std::vector<types::global_dof_index>, std::vector<double>>;
+
+    /// With the split K: send each rank the matrices of this rank's cut
+    /// cells in @p outgoing, and add those received to the rows this rank
+    /// holds (add_to_held_rows()). Collective.
+    void
+    add_cells_of_other_ranks(
+      const std::map<unsigned int, PackedCells> &outgoing);
 
     /// With the split K: @p local's entries in the velocity rows of K this
     /// rank holds (a cell outside this rank's share that writes them).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
 #include <cmath>
 #include <cstdint>
 #include <deal.II/base/work_stream.h>
@@ -11,6 +13,7 @@
 #include <fidus/fluid/cut_element/product_transposed.h>
 #include <fidus/fluid/cut_element/row_ranges.h>
 #include <fidus/fluid/fictitious_domain/rigid_mode.h>
+#include <map>
 #include <stdexcept>
 
 // The assembly stages of CutStokesSolve: the fluid cells (volume and
@@ -380,6 +383,55 @@ namespace Fidus
   }
 
   template <int dim>
+  std::vector<unsigned int>
+  CutStokesSolve<dim>::border_destinations(const cell_iterator &cell) const
+  {
+    // K's rows are split evenly by their number (choose_solver()).
+    const std::uint64_t       n_k = blocks->k_rows.size();
+    std::vector<unsigned int> ranks;
+    for (const auto i : rows_written(cell))
+      if (blocks->kind[i] == 0 && !blocks->owns_velocity_row(i))
+        {
+          // The rank r with n_k r / n_ranks <= k < n_k (r + 1) / n_ranks.
+          const std::uint64_t k = blocks->local[i];
+          unsigned int        r = k * n_ranks / n_k;
+          while (r + 1 < n_ranks && n_k * (r + 1) / n_ranks <= k)
+            ++r;
+          while (r > 0 && n_k * r / n_ranks > k)
+            --r;
+          ranks.push_back(r);
+        }
+    std::sort(ranks.begin(), ranks.end());
+    ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+    return ranks;
+  }
+
+  template <int dim>
+  void
+  CutStokesSolve<dim>::add_cells_of_other_ranks(
+    const std::map<unsigned int, PackedCells> &outgoing)
+  {
+    // The other ranks' cut cells that write this rank's rows. Collective.
+    FullMatrix<double>                   local(n_ext, n_ext);
+    std::vector<types::global_dof_index> dofs(n_ext);
+    for (const auto &incoming :
+         Utilities::MPI::some_to_some(s.communicator, outgoing))
+      {
+        const PackedCells &packed = incoming.second;
+        for (std::size_t c = 0; c * n_ext < packed.first.size(); ++c)
+          {
+            std::copy(packed.second.begin() + c * n_ext * n_ext,
+                      packed.second.begin() + (c + 1) * n_ext * n_ext,
+                      &local(0, 0));
+            std::copy(packed.first.begin() + c * n_ext,
+                      packed.first.begin() + (c + 1) * n_ext,
+                      dofs.begin());
+            add_to_held_rows(local, dofs);
+          }
+      }
+  }
+
+  template <int dim>
   void
   CutStokesSolve<dim>::gather_velocity_diagonal()
   {
@@ -441,16 +493,24 @@ namespace Fidus
     // This rank's share of the fluid cells (all of them on one rank): with
     // K's velocity rows split among the ranks, the cells whose first
     // unknown (a velocity: the element numbers a vertex's velocities
-    // first) has its row here, and besides them the cells
-    // that write this rank's rows (for those only), so that a cell is
-    // integrated by the ranks whose rows it writes and by no other; without
-    // the split (the direct solver), cut and full cells each dealt round
-    // robin.
-    std::vector<std::pair<cell_iterator, bool>> cut;
-    std::vector<cell_iterator>                  full;
-    std::vector<bool>                           full_share;
-    unsigned int                                n_cut = 0, n_full = 0;
-    std::vector<types::global_dof_index>        cell_dofs(n_local);
+    // first) has its row here, and besides them the full cells that write
+    // this rank's rows (for those only; their matrices are cached, so
+    // adding is all their work); a cut cell, whose integration is the
+    // assembly's cost, is integrated once, by the rank whose share it is,
+    // which sends its matrix to the other ranks whose rows it writes
+    // (border_destinations()). Without the split (the direct solver), cut
+    // and full cells each dealt round robin.
+    struct CutCell
+    {
+      cell_iterator             cell;
+      bool                      share;
+      std::vector<unsigned int> destinations;
+    };
+    std::vector<CutCell>                 cut;
+    std::vector<cell_iterator>           full;
+    std::vector<bool>                    full_share;
+    unsigned int                         n_cut = 0, n_full = 0;
+    std::vector<types::global_dof_index> cell_dofs(n_local);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->active_fe_index() == 0)
         {
@@ -461,12 +521,15 @@ namespace Fidus
             {
               cell->get_dof_indices(cell_dofs);
               share = blocks->owns_velocity_row(cell_dofs[0]);
-              held  = share || writes_held_rows(cell_dofs);
+              held  = share || (!is_cut && writes_held_rows(cell_dofs));
             }
           if (!share && !held)
             continue;
           if (is_cut)
-            cut.emplace_back(cell, share);
+            cut.push_back({cell,
+                           share,
+                           split_rows ? border_destinations(cell) :
+                                        std::vector<unsigned int>()});
           else
             {
               full.push_back(cell);
@@ -474,20 +537,41 @@ namespace Fidus
             }
         }
     // The cut cells are integrated on the threads and added one at a time
-    // (those of a particle share its rigid unknowns' rows).
+    // (those of a particle share its rigid unknowns' rows); the matrices
+    // other ranks' rows need are packed as they are added: the cells' DoFs,
+    // then their matrices.
+    using Packed =
+      std::pair<std::vector<types::global_dof_index>, std::vector<double>>;
+    std::map<unsigned int, Packed> outgoing;
     WorkStream::run(
       cut.begin(),
       cut.end(),
-      [this](const typename std::vector<
-               std::pair<cell_iterator, bool>>::iterator &cell,
-             CellScratch                                 &sc,
-             CellCopy                                    &cp) {
-        assemble_cell(cell->first, sc, cp);
-        cp.share = cell->second;
+      [this](const typename std::vector<CutCell>::iterator &cell,
+             CellScratch                                   &sc,
+             CellCopy                                      &cp) {
+        assemble_cell(cell->cell, sc, cp);
+        cp.share        = cell->share;
+        cp.destinations = &cell->destinations;
       },
-      [this](const CellCopy &cp) { distribute_cell(cp); },
+      [this, &outgoing](const CellCopy &cp) {
+        distribute_cell(cp);
+        if (!cp.fluid)
+          return;
+        for (const unsigned int rank : *cp.destinations)
+          {
+            PackedCells &packed = outgoing[rank];
+            packed.first.insert(packed.first.end(),
+                                cp.ext_dofs.begin(),
+                                cp.ext_dofs.end());
+            packed.second.insert(packed.second.end(),
+                                 &cp.local(0, 0),
+                                 &cp.local(0, 0) + cp.local.n_elements());
+          }
+      },
       scratch,
       copy);
+    if (split_rows)
+      add_cells_of_other_ranks(outgoing);
     // Adding a full cell's cached matrices is all its work, and one thread
     // adding them all was a third of the 3D assembly: cells that write no
     // common row (rows_written()) are added on the threads, colour by
