@@ -540,9 +540,7 @@ namespace Fidus
     // (those of a particle share its rigid unknowns' rows); the matrices
     // other ranks' rows need are packed as they are added: the cells' DoFs,
     // then their matrices.
-    using Packed =
-      std::pair<std::vector<types::global_dof_index>, std::vector<double>>;
-    std::map<unsigned int, Packed> outgoing;
+    std::map<unsigned int, PackedCells> outgoing;
     WorkStream::run(
       cut.begin(),
       cut.end(),
