@@ -7,7 +7,10 @@
 // AffineConstraints::add_entries_local_to_global with
 // keep_constrained_entries, copied into a SparsityPattern. The two must
 // hold the same entries, row by row. The rows are built in several ranges
-// (more than the threads), so the ranges' seams are crossed.
+// (more than the threads), so the ranges' seams are crossed. Then built
+// again with each row keeping all its columns, those flagged (every third
+// column), or its diagonal alone (i mod 3 = 0, 1, 2): deal.II's rows
+// filtered alike, and the diagonal in every row.
 
 #include "../fidus_test.h"
 
@@ -139,6 +142,42 @@ namespace
                   expected.n_nonzero_elements(),
                 1.,
                 1.);
+    // What each row keeps.
+    using Keep = Fidus::ElementSparsity::Keep;
+    std::vector<Keep> keep(n);
+    std::vector<bool> flagged(n);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        keep[i]    = i % 3 == 0 ? Keep::all :
+                     i % 3 == 1 ? Keep::flagged :
+                                  Keep::diagonal;
+        flagged[i] = i % 3 == 2;
+      }
+    Fidus::RowPattern kept;
+    elements.build(kept, keep, flagged);
+    unsigned int differing_kept = 0, without_diagonal = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        std::vector<unsigned int> a, b;
+        for (auto it = expected.begin(i); it != expected.end(i); ++it)
+          if (it->column() == i || keep[i] == Keep::all ||
+              (keep[i] == Keep::flagged && flagged[it->column()]))
+            a.push_back(it->column());
+        for (auto it = kept.begin(i); it != kept.end(i); ++it)
+          b.push_back(it->column());
+        without_diagonal += !kept.exists(i, i);
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        differing_kept += (a != b);
+      }
+    check_range(name + ": rows kept in part whose columns differ",
+                differing_kept,
+                0,
+                0);
+    check_range(name + ": rows kept in part without their diagonal",
+                without_diagonal,
+                0,
+                0);
     check_range(name + ": constrained DoFs (some of each kind)",
                 constraints.n_constraints() > n_fluid / 20 ? 1 : 0,
                 1,

@@ -360,10 +360,10 @@ namespace Fidus
     for (const auto &c : s.couplings)
       add_rigid(c.owners);
     // With the system as blocks, the pressure rows keep their pressure
-    // columns only (B is Bᵀ's transpose); with K's rows split, a rank also
-    // keeps of the velocity rows it does not hold their pressure columns
-    // only: K's entries there, most of the system, are not built.
-    elements.build(sparsity, partial_rows(), is_pressure);
+    // columns only (B is Bᵀ's transpose); with K's and Bᵀ's rows split, a
+    // rank keeps of the velocity rows it does not hold their diagonal
+    // alone: their entries, most of the system, are not built.
+    elements.build(sparsity, rows_kept(), is_pressure);
     count_entries();
   }
 
@@ -408,18 +408,22 @@ namespace Fidus
   }
 
   template <int dim>
-  std::vector<bool>
-  CutStokesSolve<dim>::partial_rows() const
+  std::vector<ElementSparsity::Keep>
+  CutStokesSolve<dim>::rows_kept() const
   {
-    std::vector<bool> partial;
+    using Keep = ElementSparsity::Keep;
+    std::vector<Keep> keep;
     if (!as_blocks)
-      return partial;
-    partial.assign(n_total, false);
+      return keep;
+    keep.assign(n_total, Keep::all);
     // The walls' rows are read whole (make_wall_pattern()).
     for (unsigned int i = 0; i < n_fluid; ++i)
-      partial[i] = is_pressure[i] || (split_rows && !held_velocity_rows[i] &&
-                                      !(periodic && wall_rows[i]));
-    return partial;
+      if (is_pressure[i])
+        keep[i] = Keep::flagged;
+      else if (split_rows && !held_velocity_rows[i] &&
+               !(periodic && wall_rows[i]))
+        keep[i] = Keep::diagonal;
+    return keep;
   }
 
   template <int dim>

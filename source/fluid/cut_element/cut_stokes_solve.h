@@ -29,6 +29,7 @@
 #include <fidus/fluid/cut_element/cut_saddle_point_solver.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/fluid/cut_element/cut_system_blocks.h>
+#include <fidus/fluid/cut_element/element_sparsity.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
 #include <map>
 #include <memory>
@@ -233,12 +234,13 @@ namespace Fidus
     void
     choose_solver();
 
-    /// With the system as blocks: the rows of which the pattern keeps the
-    /// pressure columns only (flagged, by system index): the pressure rows
-    /// (B is not held) and, with K's rows split, the velocity rows this
-    /// rank does not hold but for the walls'; empty otherwise.
-    std::vector<bool>
-    partial_rows() const;
+    /// With the system as blocks: what the pattern keeps of each row (by
+    /// system index; the flagged columns are the pressures): of the
+    /// pressure rows their pressure columns (B is not held), with K's rows
+    /// split of the velocity rows this rank does not hold their diagonal
+    /// (but for the walls'), of the others all; empty otherwise.
+    std::vector<ElementSparsity::Keep>
+    rows_kept() const;
 
     /// The sparsity pattern of the fluid, rigid and ghost-penalty
     /// couplings (with K's rows split, of this rank's K rows only).

@@ -37,12 +37,16 @@ namespace Fidus
 
   void
   ElementSparsity::build(RowPattern              &pattern,
-                         const std::vector<bool> &partial_rows,
+                         const std::vector<Keep> &keep,
                          const std::vector<bool> &kept_columns) const
   {
-    AssertThrow(partial_rows.empty() ||
-                  (partial_rows.size() == n && kept_columns.size() == n),
-                ExcDimensionMismatch(partial_rows.size(), n));
+    AssertThrow(keep.empty() || keep.size() == n,
+                ExcDimensionMismatch(keep.size(), n));
+    AssertThrow(keep.empty() ||
+                  std::find(keep.begin(), keep.end(), Keep::flagged) ==
+                    keep.end() ||
+                  kept_columns.size() == n,
+                ExcDimensionMismatch(kept_columns.size(), n));
     const std::size_t n_elements = (starts.size() - 1) / 3;
     const auto        list = [&](const std::size_t e, const unsigned int k) {
       return std::make_pair(columns.data() + starts[3 * e + k],
@@ -121,20 +125,24 @@ namespace Fidus
                         for (unsigned int row = first; row < last; ++row)
                           {
                             std::size_t to = fill ? col_start[row] : 0;
-                            const bool  partial =
-                              !partial_rows.empty() && partial_rows[row];
-                            row_lists(row, [&](const auto &range) {
-                              for (auto p = range.first; p != range.second; ++p)
-                                if (seen[*p] != row)
-                                  {
-                                    seen[*p] = row;
-                                    if (partial && !kept_columns[*p])
-                                      continue;
-                                    if (fill)
-                                      row_columns[to] = *p;
-                                    ++to;
-                                  }
-                            });
+                            const Keep  row_keeps =
+                              keep.empty() ? Keep::all : keep[row];
+                            const bool partial = row_keeps == Keep::flagged;
+                            // (RowPattern adds the diagonal.)
+                            if (row_keeps != Keep::diagonal)
+                              row_lists(row, [&](const auto &range) {
+                                for (auto p = range.first; p != range.second;
+                                     ++p)
+                                  if (seen[*p] != row)
+                                    {
+                                      seen[*p] = row;
+                                      if (partial && !kept_columns[*p])
+                                        continue;
+                                      if (fill)
+                                        row_columns[to] = *p;
+                                      ++to;
+                                    }
+                              });
                             if (!fill)
                               col_start[row + 1] = to;
                           }

@@ -39,16 +39,25 @@ namespace Fidus
     void
     add_element(const std::vector<types::global_dof_index> &dofs);
 
+    /// What build() keeps of a row: all its columns, those flagged in
+    /// its kept_columns, or its diagonal alone.
+    enum class Keep : unsigned char
+    {
+      all,
+      flagged,
+      diagonal
+    };
+
     /**
-     * Fill @p pattern with the couplings of all elements added. The rows
-     * flagged in @p partial_rows (none if empty) keep only the columns
-     * flagged in @p kept_columns, and their diagonal: a rank that holds
-     * some rows of a block whole and of the others only their couplings
-     * to another block builds no more than it keeps.
+     * Fill @p pattern with the couplings of all elements added, each row
+     * i keeping what @p keep[i] says (all of every row if @p keep is
+     * empty), and every diagonal: a rank that holds some rows of a block
+     * whole, of others only their couplings to another block and of the
+     * rest nothing builds no more than it keeps.
      */
     void
     build(RowPattern              &pattern,
-          const std::vector<bool> &partial_rows = {},
+          const std::vector<Keep> &keep         = {},
           const std::vector<bool> &kept_columns = {}) const;
 
   private:
