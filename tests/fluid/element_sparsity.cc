@@ -10,7 +10,10 @@
 // (more than the threads), so the ranges' seams are crossed. Then built
 // again with each row keeping all its columns, those flagged (every third
 // column), or its diagonal alone (i mod 3 = 0, 1, 2): deal.II's rows
-// filtered alike, and the diagonal in every row.
+// filtered alike, and the diagonal in every row. The rows' weights
+// (row_weights(), by which the cut element splits its rows among the ranks)
+// lie between each touched row's length and that times the number of
+// elements touching it, and equal hand-counted sums on three elements.
 
 #include "../fidus_test.h"
 
@@ -25,6 +28,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <fidus/fluid/cut_element/element_sparsity.h>
+#include <set>
 
 using namespace dealii;
 using namespace FidusTest;
@@ -83,9 +87,23 @@ namespace
                        n = n_fluid + n_extra;
     DynamicSparsityPattern dsp(n, n);
     Fidus::ElementSparsity elements(n, constraints);
+    // How many elements touch each row: through its unconstrained DoFs
+    // and the DoFs its constrained ones hang from, and its constrained
+    // ones.
+    std::vector<unsigned int> touches(n, 0);
     const auto add = [&](const std::vector<types::global_dof_index> &list) {
       constraints.add_entries_local_to_global(list, dsp, true);
       elements.add_element(list);
+      std::set<types::global_dof_index> touched;
+      for (const auto j : list)
+        {
+          touched.insert(j);
+          if (const auto *entries = constraints.get_constraint_entries(j))
+            for (const auto &entry : *entries)
+              touched.insert(entry.first);
+        }
+      for (const auto j : touched)
+        ++touches[j];
     };
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell()),
       neighbour_dofs(fe.n_dofs_per_cell()), list;
@@ -133,6 +151,33 @@ namespace
         differing_rows += (a != b);
       }
     check_range(name + ": rows", built.n_rows(), n, n);
+    // The rows' weights: at least each touched row's length (every list
+    // merged into the row is in it), at most that many times its length
+    // (each list is no longer than the row), and the row's length where one
+    // element touches it.
+    const std::vector<std::size_t> weight = elements.row_weights();
+    unsigned int                   below = 0, above = 0, inexact = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      if (touches[i] > 0)
+        {
+          below += weight[i] < built.row_length(i);
+          above += weight[i] > touches[i] * built.row_length(i);
+          inexact += touches[i] == 1 && weight[i] != built.row_length(i);
+        }
+    check_range(name + ": touched rows whose weight is below their length",
+                below,
+                0,
+                0);
+    check_range(name + ": touched rows whose weight is above their "
+                       "touches times their length",
+                above,
+                0,
+                0);
+    check_range(name + ": rows of one element whose weight is not their "
+                       "length",
+                inexact,
+                0,
+                0);
     check_range(name + ": rows whose columns differ from deal.II's",
                 differing_rows,
                 0,
@@ -183,12 +228,33 @@ namespace
                 1,
                 1);
   }
+
+  // Three elements without constraints, {0, 1, 2}, {2, 3} and {4}, on
+  // eight unknowns: each row's weight is the sum of the sizes of the
+  // elements that hold it.
+  void
+  check_weights_by_hand()
+  {
+    AffineConstraints<double> none;
+    none.close();
+    Fidus::ElementSparsity elements(8, none);
+    elements.add_element({0, 1, 2});
+    elements.add_element({2, 3});
+    elements.add_element({4});
+    const std::vector<std::size_t> weight   = elements.row_weights();
+    const std::vector<std::size_t> expected = {3, 3, 5, 2, 1, 0, 0, 0};
+    unsigned int                   wrong    = 0;
+    for (unsigned int i = 0; i < 8; ++i)
+      wrong += weight[i] != expected[i];
+    check_range("three elements by hand: rows of another weight", wrong, 0, 0);
+  }
 } // namespace
 
 int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_weights_by_hand();
   check<2>("2D");
   check<3>("3D");
   return exit_code();

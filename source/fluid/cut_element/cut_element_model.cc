@@ -51,10 +51,10 @@ namespace Fidus
           " MPI ranks: its iterative solve splits the system, its "
           "multigrid and its iterations among them, but every rank builds "
           "the whole mesh, so on one machine one rank with the machine's "
-          "cores as threads is faster and holds less in all (one sphere at "
-          "a/h = 3.2 on a 2-core machine: 3.0-3.2 s and 0.67 GB per rank on 2 "
-          "ranks against 2.8-2.9 s and 1.04 GB on one, per "
-          "solve; doc/theory/cut_element.md, 'Solvers'): run fidus on one "
+          "cores as threads is as fast or faster and holds less in all (the "
+          "paper's 3D pair 0.01 a apart on a 2-core machine: 12.7 s and "
+          "1.77 GB per rank on 2 ranks against 11.2 s and 2.19 GB on one, "
+          "per solve; doc/theory/cut_element.md, 'Solvers'): run fidus on one "
           "rank, or set 'Fluid/Cut linear solver' by hand to keep the "
           "ranks without this warning",
         0,

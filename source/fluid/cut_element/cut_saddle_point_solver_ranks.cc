@@ -41,17 +41,19 @@ namespace Fidus
   {
     const MPI_Comm     communicator = layout.communicator;
     const unsigned int n_p          = pressure.size();
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator),
-                       rank    = Utilities::MPI::this_mpi_process(communicator);
     k_owned = contiguous_range(layout.k_end - layout.k_first, communicator);
     AssertThrow(k_owned.n_elements() == 0 ||
                   k_owned.nth_index_in_set(0) == layout.k_first,
                 ExcMessage("The ranks' rows of K are not consecutive."));
-    // The pressures evenly by their number: the system numbers them among
-    // the velocities, so equal shares of each lie about alike in space.
-    const unsigned int p_first = std::uint64_t(n_p) * rank / n_ranks,
-                       p_end   = std::uint64_t(n_p) * (rank + 1) / n_ranks;
+    // The pressures where the system's split of K's rows falls among them
+    // (CutStokesSolve splits both at the same system index), so that a
+    // rank's pressures lie where its velocities do.
+    const unsigned int p_first = layout.p_first, p_end = layout.p_end;
+    AssertThrow(p_end <= n_p, ExcIndexRange(p_end, 0, n_p + 1));
     p_owned = contiguous_range(p_end - p_first, communicator);
+    AssertThrow(p_owned.n_elements() == 0 ||
+                  p_owned.nth_index_in_set(0) == p_first,
+                ExcMessage("The ranks' pressures are not consecutive."));
 
     // Each block's rows here, from the whole block (its columns already in
     // the block's numbering; a square block's diagonal first, as fill()

@@ -363,6 +363,8 @@ namespace Fidus
     // columns only (B is Bᵀ's transpose); with K's and Bᵀ's rows split, a
     // rank keeps of the velocity rows it does not hold their diagonal
     // alone: their entries, most of the system, are not built.
+    if (split_rows)
+      split_velocity_rows(elements.row_weights());
     elements.build(sparsity, rows_kept(), is_pressure);
     count_entries();
   }
@@ -386,25 +388,11 @@ namespace Fidus
     // On more ranks the iterative solver with the multigrid splits K's and
     // Bᵀ's rows among them, each rank holding a range (K numbers the
     // velocities in the system's order, then the rigid unknowns), and the
-    // rigid rows and P whole (summed over the ranks).
+    // rigid rows and P whole (summed over the ranks); the ranges are chosen
+    // with the pattern (split_velocity_rows()).
     as_blocks = iterative &&
                 s.velocity_preconditioner == VelocityPreconditioner::multigrid;
     split_rows = as_blocks && n_ranks > 1;
-    if (split_rows)
-      {
-        const unsigned int n_k =
-          n_total - std::count(is_pressure.begin(), is_pressure.end(), true);
-        k_first = std::uint64_t(n_k) * this_rank / n_ranks;
-        k_end   = std::uint64_t(n_k) * (this_rank + 1) / n_ranks;
-        held_velocity_rows.assign(n_total, false);
-        unsigned int k = 0;
-        for (unsigned int i = 0; i < n_fluid; ++i)
-          if (!is_pressure[i])
-            {
-              held_velocity_rows[i] = k >= k_first && k < k_end;
-              ++k;
-            }
-      }
   }
 
   template <int dim>
@@ -696,6 +684,8 @@ namespace Fidus
       {
         layout.k_first = k_first;
         layout.k_end   = k_end;
+        layout.p_first = p_bounds[this_rank];
+        layout.p_end   = p_bounds[this_rank + 1];
       }
     for (unsigned int i = 0; i < n_fluid; ++i)
       {

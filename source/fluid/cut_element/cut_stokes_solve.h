@@ -486,6 +486,24 @@ namespace Fidus
     std::vector<unsigned int>
     border_destinations(const cell_iterator &cell) const;
 
+    /// With the split K: this rank's range of K's rows and each rank's
+    /// (#k_bounds, #p_bounds), from the rows' weights (by system index,
+    /// ElementSparsity::row_weights()).
+    void
+    split_velocity_rows(const std::vector<std::size_t> &weight);
+
+    /// With the split K: the rank that holds the velocity row of K of the
+    /// unknown @p i (a velocity).
+    unsigned int
+    velocity_row_rank(const types::global_dof_index i) const;
+
+    /// With the split K: the rank that integrates each cut cell, given the
+    /// rank that holds each one's first velocity row (@p home): its home
+    /// while the home has fewer than an even share of the cut cells, else
+    /// the first rank below its share. The same on every rank.
+    std::vector<unsigned int>
+    balance_cut_cells(const std::vector<unsigned int> &home) const;
+
     /// Cut cells' matrices sent to another rank: their extended DoFs
     /// (n_ext each), then their n_ext × n_ext matrices.
     using PackedCells =
@@ -661,9 +679,12 @@ namespace Fidus
     /// among the ranks, each holding the range [k_first, k_end) of K's
     /// rows (CutSystemBlocks::reinit()); and the velocity rows' diagonal,
     /// gathered from the ranks (by system index).
-    bool           split_rows = false;
-    unsigned int   k_first = 0, k_end = 0;
-    Vector<double> velocity_diagonal;
+    bool         split_rows = false;
+    unsigned int k_first = 0, k_end = 0;
+    /// With the split, where each rank's rows of K start (and n_k last),
+    /// and its pressures (and n_p last).
+    std::vector<unsigned int> k_bounds, p_bounds;
+    Vector<double>            velocity_diagonal;
     /// With the split, the velocity rows (by system index) in that range.
     std::vector<bool> held_velocity_rows;
     /// The pressure mass matrix over the fluid (iterative solver only).

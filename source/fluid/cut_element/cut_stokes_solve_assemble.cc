@@ -386,21 +386,10 @@ namespace Fidus
   std::vector<unsigned int>
   CutStokesSolve<dim>::border_destinations(const cell_iterator &cell) const
   {
-    // K's rows are split evenly by their number (choose_solver()).
-    const std::uint64_t       n_k = blocks->k_rows.size();
     std::vector<unsigned int> ranks;
     for (const auto i : rows_written(cell))
       if (blocks->kind[i] == 0 && !blocks->owns_velocity_row(i))
-        {
-          // The rank r with n_k r / n_ranks <= k < n_k (r + 1) / n_ranks.
-          const std::uint64_t k = blocks->local[i];
-          unsigned int        r = k * n_ranks / n_k;
-          while (r + 1 < n_ranks && n_k * (r + 1) / n_ranks <= k)
-            ++r;
-          while (r > 0 && n_k * r / n_ranks > k)
-            --r;
-          ranks.push_back(r);
-        }
+        ranks.push_back(velocity_row_rank(i));
     std::sort(ranks.begin(), ranks.end());
     ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
     return ranks;
@@ -491,15 +480,16 @@ namespace Fidus
                              std::make_pair(local, copy.local_pressure));
         }
     // This rank's share of the fluid cells (all of them on one rank): with
-    // K's velocity rows split among the ranks, the cells whose first
+    // K's velocity rows split among the ranks, the full cells whose first
     // unknown (a velocity: the element numbers a vertex's velocities
     // first) has its row here, and besides them the full cells that write
     // this rank's rows (for those only; their matrices are cached, so
     // adding is all their work); a cut cell, whose integration is the
-    // assembly's cost, is integrated once, by the rank whose share it is,
-    // which sends its matrix to the other ranks whose rows it writes
-    // (border_destinations()). Without the split (the direct solver), cut
-    // and full cells each dealt round robin.
+    // assembly's cost, is integrated once, by one rank (its first
+    // unknown's, as far as the ranks' loads stay even:
+    // balance_cut_cells()), which sends its matrix to the other ranks
+    // whose rows it writes (border_destinations()). Without the split (the
+    // direct solver), cut and full cells each dealt round robin.
     struct CutCell
     {
       cell_iterator             cell;
@@ -509,6 +499,8 @@ namespace Fidus
     std::vector<CutCell>                 cut;
     std::vector<cell_iterator>           full;
     std::vector<bool>                    full_share;
+    std::vector<cell_iterator>           split_cut;
+    std::vector<unsigned int>            home;
     unsigned int                         n_cut = 0, n_full = 0;
     std::vector<types::global_dof_index> cell_dofs(n_local);
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -520,22 +512,33 @@ namespace Fidus
           if (split_rows)
             {
               cell->get_dof_indices(cell_dofs);
+              if (is_cut)
+                {
+                  split_cut.push_back(cell);
+                  home.push_back(velocity_row_rank(cell_dofs[0]));
+                  continue;
+                }
               share = blocks->owns_velocity_row(cell_dofs[0]);
-              held  = share || (!is_cut && writes_held_rows(cell_dofs));
+              held  = share || writes_held_rows(cell_dofs);
             }
           if (!share && !held)
             continue;
           if (is_cut)
-            cut.push_back({cell,
-                           share,
-                           split_rows ? border_destinations(cell) :
-                                        std::vector<unsigned int>()});
+            cut.push_back({cell, share, std::vector<unsigned int>()});
           else
             {
               full.push_back(cell);
               full_share.push_back(share);
             }
         }
+    if (split_rows)
+      {
+        const std::vector<unsigned int> rank = balance_cut_cells(home);
+        for (unsigned int k = 0; k < split_cut.size(); ++k)
+          if (rank[k] == this_rank)
+            cut.push_back(
+              {split_cut[k], true, border_destinations(split_cut[k])});
+      }
     // The cut cells are integrated on the threads and added one at a time
     // (those of a particle share its rigid unknowns' rows); the matrices
     // other ranks' rows need are packed as they are added: the cells' DoFs,

@@ -35,6 +35,31 @@ namespace Fidus
     starts.push_back(columns.size());
   }
 
+  std::vector<std::size_t>
+  ElementSparsity::row_weights() const
+  {
+    // A row in U takes U's list (and C's if it is in L too), a row in C
+    // takes L's (build()).
+    std::vector<std::size_t>   weight(n, 0);
+    std::vector<unsigned char> in_l(n, 0);
+    for (std::size_t e = 0; e + 1 < starts.size(); e += 3)
+      {
+        const unsigned int *u0 = columns.data() + starts[e],
+                           *c0 = columns.data() + starts[e + 1],
+                           *l0 = columns.data() + starts[e + 2],
+                           *l1 = columns.data() + starts[e + 3];
+        for (auto p = l0; p != l1; ++p)
+          in_l[*p] = 1;
+        for (auto p = u0; p != c0; ++p)
+          weight[*p] += (c0 - u0) + (in_l[*p] ? l0 - c0 : 0);
+        for (auto p = c0; p != l0; ++p)
+          weight[*p] += l1 - l0;
+        for (auto p = l0; p != l1; ++p)
+          in_l[*p] = 0;
+      }
+    return weight;
+  }
+
   void
   ElementSparsity::build(RowPattern              &pattern,
                          const std::vector<Keep> &keep,

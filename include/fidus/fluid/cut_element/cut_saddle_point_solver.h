@@ -107,6 +107,9 @@ namespace Fidus
       /// empty there, as CutSystemBlocks::reinit() leaves them with k_first
       /// and k_end.
       unsigned int k_first = 0, k_end = 0;
+      /// On more than one rank: the pressures (counted in the system's
+      /// order) whose rows this rank holds.
+      unsigned int p_first = 0, p_end = 0;
     };
 
     /// The cost of one solve.

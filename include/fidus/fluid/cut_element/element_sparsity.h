@@ -60,6 +60,16 @@ namespace Fidus
           const std::vector<Keep> &keep         = {},
           const std::vector<bool> &kept_columns = {}) const;
 
+    /**
+     * Per row, the lengths of the lists build() merges into it, summed
+     * (repeats counted): a bound on the row's length, proportional to it
+     * where the elements are alike, and found in one pass over the
+     * elements, before the pattern. The cut element splits its rows among
+     * the ranks by it.
+     */
+    std::vector<std::size_t>
+    row_weights() const;
+
   private:
     const unsigned int               n;
     const AffineConstraints<double> &constraints;
