@@ -76,11 +76,12 @@ namespace Fidus
   CutStokesSolve<dim>::balance_cut_cells(
     const std::vector<unsigned int> &home) const
   {
-    // The rows split evenly need not split the cut cells evenly: the DoFs
-    // are numbered cell by cell, level by level, and the cut cells, on the
-    // finest levels, can all fall in one rank's rows, which then integrated
-    // them alone while the others waited. A cell moved off its home is
-    // sent to the ranks whose rows it writes, as a cell on the border is.
+    // Rows split by their weight need not split the cut cells evenly: the
+    // DoFs are numbered cell by cell, level by level, so the cut cells, on
+    // the finest levels, can fall mostly in one rank's rows (all of them,
+    // when the rows were split evenly in number), which then integrates
+    // them while the others wait. A cell moved off its home is sent to the
+    // ranks whose rows it writes, as a cell on the border is.
     const unsigned int        n     = home.size();
     const unsigned int        quota = (n + n_ranks - 1) / n_ranks;
     std::vector<unsigned int> load(n_ranks, 0);
