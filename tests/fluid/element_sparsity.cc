@@ -35,11 +35,22 @@ using namespace FidusTest;
 
 namespace
 {
+  /// The Taylor-Hood mesh of the test: periodic in x, hanging nodes in
+  /// the middle, inhomogeneous velocities on y = 0 and y = 1.
   template <int dim>
-  void
-  check(const std::string &name)
+  struct Mesh
   {
-    Triangulation<dim> tria;
+    Triangulation<dim>        tria;
+    const FESystem<dim>       fe{FE_Q<dim>(2), dim, FE_Q<dim>(1), 1};
+    DoFHandler<dim>           dof_handler;
+    AffineConstraints<double> constraints;
+
+    Mesh();
+  };
+
+  template <int dim>
+  Mesh<dim>::Mesh()
+  {
     GridGenerator::hyper_cube(tria, 0., 1., true);
     // Periodic in x, before any refinement.
     std::vector<
@@ -61,10 +72,8 @@ namespace
         tria.execute_coarsening_and_refinement();
       }
 
-    const FESystem<dim> fe(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1);
-    DoFHandler<dim>     dof_handler(tria);
+    dof_handler.reinit(tria);
     dof_handler.distribute_dofs(fe);
-    AffineConstraints<double> constraints;
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     std::vector<
       GridTools::PeriodicFacePair<typename DoFHandler<dim>::cell_iterator>>
@@ -81,16 +90,24 @@ namespace
         constraints,
         fe.component_mask(velocity));
     constraints.close();
+  }
 
-    // Extra unknowns past the mesh's: four groups of six.
-    const unsigned int n_fluid = dof_handler.n_dofs(), n_extra = 24,
-                       n = n_fluid + n_extra;
-    DynamicSparsityPattern dsp(n, n);
-    Fidus::ElementSparsity elements(n, constraints);
-    // How many elements touch each row: through its unconstrained DoFs
-    // and the DoFs its constrained ones hang from, and its constrained
-    // ones.
-    std::vector<unsigned int> touches(n, 0);
+  /// The elements: each cell's DoFs (every third with a group of extra
+  /// unknowns past the mesh's, four groups of six), each cell's union with
+  /// its active neighbour across face 1, and two groups together; added
+  /// to @p elements and, through the constraints, to @p dsp. @p touches
+  /// counts the elements that touch each row: through its unconstrained
+  /// DoFs and the DoFs its constrained ones hang from, and its constrained
+  /// ones.
+  template <int dim>
+  void
+  add_elements(const Mesh<dim>           &mesh,
+               const unsigned int         n_fluid,
+               DynamicSparsityPattern    &dsp,
+               Fidus::ElementSparsity    &elements,
+               std::vector<unsigned int> &touches)
+  {
+    const AffineConstraints<double> &constraints = mesh.constraints;
     const auto add = [&](const std::vector<types::global_dof_index> &list) {
       constraints.add_entries_local_to_global(list, dsp, true);
       elements.add_element(list);
@@ -105,10 +122,10 @@ namespace
       for (const auto j : touched)
         ++touches[j];
     };
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell()),
-      neighbour_dofs(fe.n_dofs_per_cell()), list;
+    std::vector<types::global_dof_index> dofs(mesh.fe.n_dofs_per_cell()),
+      neighbour_dofs(mesh.fe.n_dofs_per_cell()), list;
     unsigned int k = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : mesh.dof_handler.active_cell_iterators())
       {
         cell->get_dof_indices(dofs);
         list = dofs;
@@ -133,31 +150,21 @@ namespace
     for (unsigned int e = 0; e < 12; ++e)
       list.push_back(n_fluid + e);
     add(list);
+  }
 
-    SparsityPattern   expected;
-    Fidus::RowPattern built;
-    expected.copy_from(dsp);
-    elements.build(built);
-    unsigned int differing_rows = 0;
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        std::vector<unsigned int> a, b;
-        for (auto it = expected.begin(i); it != expected.end(i); ++it)
-          a.push_back(it->column());
-        for (auto it = built.begin(i); it != built.end(i); ++it)
-          b.push_back(it->column());
-        std::sort(a.begin(), a.end());
-        std::sort(b.begin(), b.end());
-        differing_rows += (a != b);
-      }
-    check_range(name + ": rows", built.n_rows(), n, n);
-    // The rows' weights: at least each touched row's length (every list
-    // merged into the row is in it), at most that many times its length
-    // (each list is no longer than the row), and the row's length where one
-    // element touches it.
+  /// The rows' weights: at least each touched row's length (every list
+  /// merged into the row is in it), at most that many times its length
+  /// (each list is no longer than the row), and the row's length where
+  /// one element touches it.
+  void
+  check_weights(const std::string               &name,
+                const Fidus::ElementSparsity    &elements,
+                const Fidus::RowPattern         &built,
+                const std::vector<unsigned int> &touches)
+  {
     const std::vector<std::size_t> weight = elements.row_weights();
     unsigned int                   below = 0, above = 0, inexact = 0;
-    for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int i = 0; i < touches.size(); ++i)
       if (touches[i] > 0)
         {
           below += weight[i] < built.row_length(i);
@@ -178,17 +185,18 @@ namespace
                 inexact,
                 0,
                 0);
-    check_range(name + ": rows whose columns differ from deal.II's",
-                differing_rows,
-                0,
-                0);
-    check_range(name + ": entries, relative to deal.II's",
-                double(built.n_nonzero_elements()) /
-                  expected.n_nonzero_elements(),
-                1.,
-                1.);
-    // What each row keeps.
-    using Keep = Fidus::ElementSparsity::Keep;
+  }
+
+  /// Built with each row keeping all its columns, those flagged (every
+  /// third column), or its diagonal alone (i mod 3 = 0, 1, 2): deal.II's
+  /// rows (@p expected) filtered alike, and the diagonal in every row.
+  void
+  check_kept(const std::string            &name,
+             const Fidus::ElementSparsity &elements,
+             const SparsityPattern        &expected)
+  {
+    const unsigned int n = expected.n_rows();
+    using Keep           = Fidus::ElementSparsity::Keep;
     std::vector<Keep> keep(n);
     std::vector<bool> flagged(n);
     for (unsigned int i = 0; i < n; ++i)
@@ -223,8 +231,50 @@ namespace
                 without_diagonal,
                 0,
                 0);
+  }
+
+  template <int dim>
+  void
+  check(const std::string &name)
+  {
+    const Mesh<dim>    mesh;
+    const unsigned int n_fluid = mesh.dof_handler.n_dofs(), n_extra = 24,
+                       n = n_fluid + n_extra;
+    DynamicSparsityPattern    dsp(n, n);
+    Fidus::ElementSparsity    elements(n, mesh.constraints);
+    std::vector<unsigned int> touches(n, 0);
+    add_elements(mesh, n_fluid, dsp, elements, touches);
+
+    SparsityPattern   expected;
+    Fidus::RowPattern built;
+    expected.copy_from(dsp);
+    elements.build(built);
+    unsigned int differing_rows = 0;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        std::vector<unsigned int> a, b;
+        for (auto it = expected.begin(i); it != expected.end(i); ++it)
+          a.push_back(it->column());
+        for (auto it = built.begin(i); it != built.end(i); ++it)
+          b.push_back(it->column());
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        differing_rows += (a != b);
+      }
+    check_range(name + ": rows", built.n_rows(), n, n);
+    check_weights(name, elements, built, touches);
+    check_range(name + ": rows whose columns differ from deal.II's",
+                differing_rows,
+                0,
+                0);
+    check_range(name + ": entries, relative to deal.II's",
+                double(built.n_nonzero_elements()) /
+                  expected.n_nonzero_elements(),
+                1.,
+                1.);
+    check_kept(name, elements, expected);
     check_range(name + ": constrained DoFs (some of each kind)",
-                constraints.n_constraints() > n_fluid / 20 ? 1 : 0,
+                mesh.constraints.n_constraints() > n_fluid / 20 ? 1 : 0,
                 1,
                 1);
   }

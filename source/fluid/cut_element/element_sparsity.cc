@@ -40,23 +40,17 @@ namespace Fidus
   {
     // A row in U takes U's list (and C's if it is in L too), a row in C
     // takes L's (build()).
-    std::vector<std::size_t>   weight(n, 0);
-    std::vector<unsigned char> in_l(n, 0);
-    for (std::size_t e = 0; e + 1 < starts.size(); e += 3)
-      {
-        const unsigned int *u0 = columns.data() + starts[e],
-                           *c0 = columns.data() + starts[e + 1],
-                           *l0 = columns.data() + starts[e + 2],
-                           *l1 = columns.data() + starts[e + 3];
-        for (auto p = l0; p != l1; ++p)
-          in_l[*p] = 1;
-        for (auto p = u0; p != c0; ++p)
-          weight[*p] += (c0 - u0) + (in_l[*p] ? l0 - c0 : 0);
-        for (auto p = c0; p != l0; ++p)
-          weight[*p] += l1 - l0;
-        for (auto p = l0; p != l1; ++p)
-          in_l[*p] = 0;
-      }
+    const auto length = [this](const std::size_t e, const unsigned int k) {
+      const auto [first, last] = list(e, k);
+      return std::size_t(last - first);
+    };
+    std::vector<std::size_t> weight(n, 0);
+    for_each_touch(
+      [&](const unsigned int row, const std::size_t e, unsigned char kind) {
+        weight[row] += kind == 2 ?
+                         length(e, 2) :
+                         length(e, 0) + (kind == 1 ? length(e, 1) : 0);
+      });
     return weight;
   }
 
@@ -72,33 +66,11 @@ namespace Fidus
                     keep.end() ||
                   kept_columns.size() == n,
                 ExcDimensionMismatch(kept_columns.size(), n));
-    const std::size_t n_elements = (starts.size() - 1) / 3;
-    const auto        list = [&](const std::size_t e, const unsigned int k) {
-      return std::make_pair(columns.data() + starts[3 * e + k],
-                            columns.data() + starts[3 * e + k + 1]);
-    };
-    // For each row, the elements that touch it and how: 0 through U (and
-    // not L), 1 through U and L, 2 through C. The pairs are sorted by row
-    // (a counting sort), the elements of a row in their order.
-    constexpr unsigned int     none = std::numeric_limits<unsigned int>::max();
-    std::vector<std::size_t>   row_start(n + 1, 0);
-    std::vector<unsigned char> in_l(n, 0);
-    const auto                 for_each_touch = [&](const auto &f) {
-      for (std::size_t e = 0; e < n_elements; ++e)
-        {
-          const auto [l0, l1] = list(e, 2);
-          for (auto p = l0; p != l1; ++p)
-            in_l[*p] = 1;
-          const auto [u0, u1] = list(e, 0);
-          for (auto p = u0; p != u1; ++p)
-            f(*p, e, in_l[*p] ? 1 : 0);
-          const auto [c0, c1] = list(e, 1);
-          for (auto p = c0; p != c1; ++p)
-            f(*p, e, 2);
-          for (auto p = l0; p != l1; ++p)
-            in_l[*p] = 0;
-        }
-    };
+    // For each row, the elements that touch it and how (for_each_touch()).
+    // The pairs are sorted by row (a counting sort), the elements of a row
+    // in their order.
+    constexpr unsigned int   none = std::numeric_limits<unsigned int>::max();
+    std::vector<std::size_t> row_start(n + 1, 0);
     for_each_touch([&](const unsigned int row, std::size_t, unsigned char) {
       ++row_start[row + 1];
     });

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <deal.II/lac/affine_constraints.h>
 #include <fidus/fluid/cut_element/row_pattern.h>
+#include <utility>
 #include <vector>
 
 namespace Fidus
@@ -82,6 +83,38 @@ namespace Fidus
     std::vector<unsigned int> columns;
     /// Where each element's lists start in columns: U, C, L, end.
     std::vector<std::size_t> starts;
+
+    /// Element @p e's list @p k (0: U, 1: C, 2: L), as [first, last).
+    std::pair<const unsigned int *, const unsigned int *>
+    list(const std::size_t e, const unsigned int k) const
+    {
+      return {columns.data() + starts[3 * e + k],
+              columns.data() + starts[3 * e + k + 1]};
+    }
+
+    /// Call @p f(row, e, kind) for each row that element e touches, the
+    /// elements in their order: kind 0 through U (and not L), 1 through U
+    /// and L, 2 through C. What build() and row_weights() both walk.
+    template <typename F>
+    void
+    for_each_touch(const F &f) const
+    {
+      std::vector<unsigned char> in_l(n, 0);
+      for (std::size_t e = 0; 3 * e + 3 < starts.size(); ++e)
+        {
+          const auto [l0, l1] = list(e, 2);
+          for (auto p = l0; p != l1; ++p)
+            in_l[*p] = 1;
+          const auto [u0, u1] = list(e, 0);
+          for (auto p = u0; p != u1; ++p)
+            f(*p, e, in_l[*p] ? 1 : 0);
+          const auto [c0, c1] = list(e, 1);
+          for (auto p = c0; p != c1; ++p)
+            f(*p, e, 2);
+          for (auto p = l0; p != l1; ++p)
+            in_l[*p] = 0;
+        }
+    }
   };
 } // namespace Fidus
 
