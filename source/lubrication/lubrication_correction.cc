@@ -392,11 +392,12 @@ namespace Fidus::Contact
 
   const std::vector<LubricationBond> &
   LubricationCorrection::find_bonds(const std::vector<Vec3>   &positions,
-                                    const std::vector<double> &radii)
+                                    const std::vector<double> &radii,
+                                    const std::vector<double> &fluid_radii)
   {
     found = LubricationStatistics();
     bond.clear();
-    collect_bonds(positions, radii, found);
+    collect_bonds(positions, radii, found, fluid_radii);
     return bond;
   }
 
@@ -516,13 +517,15 @@ namespace Fidus::Contact
 
 
   bool
-  LubricationCorrection::fill_resistances(LubricationBond &b,
-                                          const double     a_small,
-                                          const double     range,
-                                          const double     flow_range,
-                                          const double     flow_edge,
-                                          const double     tangential_range,
-                                          LubricationStatistics &stat) const
+  LubricationCorrection::fill_resistances(
+    LubricationBond             &b,
+    const double                 a_small,
+    const double                 range,
+    const double                 flow_range,
+    const double                 flow_edge,
+    const double                 tangential_range,
+    LubricationStatistics       &stat,
+    const std::array<double, 2> &resolved_radii) const
   {
     // A bond is kept only where the true resistance exceeds a resolved
     // one, i.e. where the mesh misses some of the squeeze. A wall gets the
@@ -532,12 +535,14 @@ namespace Fidus::Contact
     if (b.gap < floor)
       ++stat.n_rough;
     const double gap      = std::max(b.gap, floor);
+    const double ra_i     = resolved_radii[0] >= 0. ? resolved_radii[0] : b.a_i;
+    const double ra_j     = resolved_radii[1] >= 0. ? resolved_radii[1] : b.a_j;
     const auto   resolved = [&](const double r) {
       return settings.nothing_resolved ? 0. :
                                            squeeze_resistance(dim,
                                                             settings.viscosity,
-                                                            b.a_i,
-                                                            b.a_j,
+                                                            ra_i,
+                                                            ra_j,
                                                             std::max(gap, r));
     };
     b.r_true = squeeze_resistance(dim, settings.viscosity, b.a_i, b.a_j, gap);
@@ -560,8 +565,8 @@ namespace Fidus::Contact
                          0. :
                          tangential_resistance(dim,
                                                settings.viscosity,
-                                               b.a_i,
-                                               b.a_j,
+                                               ra_i,
+                                               ra_j,
                                                std::max(gap, tangential_range),
                                                tangential_range);
       }
@@ -574,7 +579,8 @@ namespace Fidus::Contact
   void
   LubricationCorrection::collect_bonds(const std::vector<Vec3>   &positions,
                                        const std::vector<double> &radii,
-                                       LubricationStatistics     &stat)
+                                       LubricationStatistics     &stat,
+                                       const std::vector<double> &fluid_radii)
   {
     const std::size_t n   = positions.size();
     const double      h_c = settings.range;
@@ -591,14 +597,31 @@ namespace Fidus::Contact
 
     // With a resolved gap fraction every range is that fraction of the
     // bond's smaller radius (the radius for a wall), so the pair search
-    // reaches out to it for the largest radius.
+    // reaches out to it for the largest radius. A particle the fluid saw
+    // shrunk (fluid_radii) has every gap of its widened by as much, and the
+    // fluid resolves each at its widened width: a gap below half the smaller
+    // radius is corrected from there, where the gap formulas still hold (a
+    // wider one's difference is a few per cent of the drag, and the formulas no
+    // longer apply).
     const double fraction = settings.resolved_gap_fraction;
     const double a_max =
       radii.empty() ? 0. : *std::max_element(radii.begin(), radii.end());
+    const bool   shrunk = fraction > 0. && fluid_radii.size() == radii.size();
+    const double widened_reach = 0.5;
     const double h_pairs =
       fraction > 0. ?
-        fraction * a_max :
+        (shrunk ? std::max(fraction, widened_reach) : fraction) * a_max :
         std::max(std::max(h_c, h_o), settings.tangential ? h_t : 0.);
+    // The gap a bond is resolved at: its fluid width if the shrinking
+    // widened it and it is within reach, else the resolved fraction.
+    const auto resolved_gap = [&](const double length,
+                                  const double gap,
+                                  const double a_small,
+                                  const double fluid_radii_sum) {
+      return shrunk && gap < widened_reach * a_small ?
+               std::max(fraction * a_small, length - fluid_radii_sum) :
+               fraction * a_small;
+    };
     std::vector<PairSearch::Pair> pairs;
     search.find_pairs(positions, radii, h_pairs, pairs);
     for (const auto &[i, j] : pairs)
@@ -612,13 +635,27 @@ namespace Fidus::Contact
         b.length             = std::sqrt(dot(r, r));
         b.gap                = b.length - radii[i] - radii[j];
         const double a_small = std::min(radii[i], radii[j]);
-        const double h_bond  = fraction * a_small;
+        const double h_bond =
+          resolved_gap(b.length,
+                       b.gap,
+                       a_small,
+                       shrunk ? fluid_radii[i] + fluid_radii[j] : 0.);
         if (b.gap >= (fraction > 0. ? h_bond : h_pairs) || !(b.length > 0.))
           continue;
         for (unsigned int d = 0; d < 3; ++d)
           b.n[d] = r[d] / b.length;
         if (fraction > 0. ?
-              fill_resistances(b, a_small, h_bond, h_bond, 0., h_bond, stat) :
+              fill_resistances(b,
+                               a_small,
+                               h_bond,
+                               h_bond,
+                               0.,
+                               h_bond,
+                               stat,
+                               shrunk ?
+                                 std::array<double, 2>{
+                                   {fluid_radii[i], fluid_radii[j]}} :
+                                 std::array<double, 2>{{-1., -1.}}) :
               fill_resistances(b, a_small, h_c, h_f, h_o, h_t, stat))
           {
             bond.push_back(b);
@@ -635,7 +672,10 @@ namespace Fidus::Contact
           b.a_i    = radii[i];
           b.length = wall.side * (positions[i][wall.axis] - wall.position);
           b.gap    = b.length - radii[i];
-          const double h_bond = fraction * radii[i];
+          const double h_bond = resolved_gap(b.length,
+                                             b.gap,
+                                             radii[i],
+                                             shrunk ? fluid_radii[i] : 0.);
           if (b.gap >= (fraction > 0. ? h_bond : std::max(h_w, h_wt)))
             continue;
           b.n[wall.axis] = -wall.side;
@@ -652,7 +692,8 @@ namespace Fidus::Contact
                                  h_bond,
                                  0.,
                                  h_bond,
-                                 stat) :
+                                 stat,
+                                 {{shrunk ? fluid_radii[i] : -1., 0.}}) :
                 fill_resistances(b, radii[i], h_w, h_w, 0., h_wt, stat))
             {
               bond.push_back(b);

@@ -354,10 +354,18 @@ namespace Fidus::Contact
      * with @p radii, their resistances filled and their forces zero. The
      * model adds subgrid_loads() of each to its own system; measure() then
      * records the forces of the velocities it solved.
+     *
+     * @p fluid_radii, if not empty, are the radii the fluid was solved
+     * with, smaller than @p radii where the model shrank a particle to
+     * leave the resolved gap: the fluid then carries each gap at its own
+     * widened width, and every gap the shrinking widened gets a bond (the
+     * resistance between its true and its fluid width), not only those
+     * below the resolved gap fraction.
      */
     const std::vector<LubricationBond> &
     find_bonds(const std::vector<Vec3>   &positions,
-               const std::vector<double> &radii);
+               const std::vector<double> &radii,
+               const std::vector<double> &fluid_radii = {});
 
     /**
      * The loads (F_i, T_i, F_j, T_j) that bond @p b adds at the generalised
@@ -457,21 +465,28 @@ namespace Fidus::Contact
     /// same test for particle pairs and walls, hence one function. The
     /// flow's resolved gap rises from @p flow_range to @p flow_edge (a
     /// step if flow_edge <= flow_range; LubricationSettings::flow_edge).
+    /// The resolved resistances are those of surfaces of radii
+    /// @p resolved_radii (the fluid's, if it saw them shrunk; negative:
+    /// the bond's own).
     bool
-    fill_resistances(LubricationBond       &b,
-                     double                 a_small,
-                     double                 range,
-                     double                 flow_range,
-                     double                 flow_edge,
-                     double                 tangential_range,
-                     LubricationStatistics &stat) const;
+    fill_resistances(LubricationBond             &b,
+                     double                       a_small,
+                     double                       range,
+                     double                       flow_range,
+                     double                       flow_edge,
+                     double                       tangential_range,
+                     LubricationStatistics       &stat,
+                     const std::array<double, 2> &resolved_radii = {
+                       {-1., -1.}}) const;
 
     /// Appends to the bonds those of the particle pairs, then of the walls,
-    /// within range of the squeeze; counts them in @p stat.
+    /// within range of the squeeze; counts them in @p stat. @p fluid_radii
+    /// as in find_bonds().
     void
     collect_bonds(const std::vector<Vec3>   &positions,
                   const std::vector<double> &radii,
-                  LubricationStatistics     &stat);
+                  LubricationStatistics     &stat,
+                  const std::vector<double> &fluid_radii = {});
 
     /// Solves for the part of u* that the external forces drive and takes
     /// the difference of the two resolved resistances on it off @p rhs;

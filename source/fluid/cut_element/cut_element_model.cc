@@ -188,7 +188,7 @@ namespace Fidus
     typename Cut::Result r;
     try
       {
-        s.couplings = subgrid_couplings(X);
+        s.couplings = subgrid_couplings(X, radii);
         r           = Cut::solve(s);
       }
     catch (const std::exception &e)
@@ -345,7 +345,9 @@ namespace Fidus
 
   template <int dim>
   std::vector<typename CutStokesInclusion<dim>::RigidCoupling>
-  CutElementModel<dim>::subgrid_couplings(const std::vector<Vec3> &X) const
+  CutElementModel<dim>::subgrid_couplings(
+    const std::vector<Vec3>   &X,
+    const std::vector<double> &fluid) const
   {
     std::vector<typename CutStokesInclusion<dim>::RigidCoupling> couplings;
     if (subgrid == nullptr)
@@ -367,7 +369,7 @@ namespace Fidus
       return k < dim ? int(dim) - 1 : int(dim);
     };
     for (const Contact::LubricationBond &b :
-         subgrid->find_bonds(X, prm.particles.radii))
+         subgrid->find_bonds(X, prm.particles.radii, fluid))
       {
         typename CutStokesInclusion<dim>::RigidCoupling c;
         c.owners.push_back(b.i);

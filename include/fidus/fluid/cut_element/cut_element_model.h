@@ -93,9 +93,11 @@ namespace Fidus
     fluid_radii(const std::vector<Vec3> &X, const SolveLabel &label) const;
 
     /// The sub-grid lubrication's bonds at @p X as resistances among the
-    /// solver's rigid unknowns (in its units), none without the correction.
+    /// solver's rigid unknowns (in its units), none without the correction;
+    /// each gap resolved at its width between the @p fluid radii.
     std::vector<typename CutStokesInclusion<dim>::RigidCoupling>
-    subgrid_couplings(const std::vector<Vec3> &X) const;
+    subgrid_couplings(const std::vector<Vec3>   &X,
+                      const std::vector<double> &fluid) const;
 
     /// With Output/Verbosity = verbose: the solve's size, its solver and
     /// the seconds of its stages, one line.
