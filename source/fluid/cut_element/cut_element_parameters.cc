@@ -46,8 +46,10 @@ namespace Fidus
       "gives the fluid (the contact model keeps the true radii); > 0. "
       "Smaller gaps cost more refinement; down to 1e-4 the 2D squeeze "
       "follows the lubrication law (doc/theory/cut_element.md). With "
-      "'Lubrication correction' the correction adds the resistance of the "
-      "gaps below it (doc/theory/lubrication.md). auto: 1e-4, or " +
+      "'Lubrication correction' the correction adds the resistance the "
+      "shrinking takes from the gaps: those below it, and the other gaps "
+      "of a particle shrunk for one (doc/theory/lubrication.md). auto: "
+      "1e-4, or " +
         std::to_string(corrected_minimum_gap).substr(0, 4) +
         " with 'Lubrication correction'.");
     prm.declare_entry(
