@@ -10,11 +10,12 @@
 # minimum gap, no gap cells: Cut gap cells = 0), on one rank.
 # Prints eta_r, its lubrication part, N1, N2 and the particle pressure
 # (in eta_f gamma_dot), the unknowns and the seconds and peak memory of
-# each run. The cut cases need up to 13 GB (level 5).
+# each run. Measured at 0.4 a: 1.5 GB (level 4), 6.3 GB (level 5).
 # Env: FD_LEVELS (default "4 5"), CUT_CASES (default "4,0.4 4,0.2 5,0.4";
-# "4,0.1": 530 979 unknowns, 156 FGMRES, 7 minutes; "4,0.05": 880 935
-# unknowns, 195 FGMRES, 15 minutes and 16 GB), NP (default 2), FIDUS, WORK
-# (keep the runs there).
+# "4,0.1": 530 979 unknowns, about 2 minutes and 7.6 GB; "4,0.05":
+# 880 935 unknowns, about 4 minutes and 13 GB; "5,0.1": 995 749
+# unknowns, 3 minutes and 11.4 GB), NP (default 2), FIDUS, WORK (keep
+# the runs there).
 # Usage: contrib/benchmarks/cut_dense_3d.sh
 set -euo pipefail
 top="$(cd "$(dirname "$0")/../.." && pwd)"
