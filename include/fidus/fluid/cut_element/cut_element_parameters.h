@@ -49,6 +49,12 @@ namespace Fidus
     /// (doc/theory/lubrication.md, "With the cut finite element").
     static constexpr double corrected_minimum_gap = 0.02;
 
+    /// The cells across a thin gap that 'auto' gives without and with
+    /// Fluid/Lubrication correction (doc/theory/lubrication.md, "With the
+    /// cut finite element").
+    static constexpr double resolved_gap_cells  = 2.;
+    static constexpr double corrected_gap_cells = 1.;
+
     /// The fluid sees every gap at least this times the smaller radius
     /// (wall gaps: the radius).
     double minimum_gap = 1e-4;
@@ -58,7 +64,7 @@ namespace Fidus
     /// element the correction takes its ranges from minimum_gap).
     std::vector<std::string> ranges_set;
     /// Cells across a thin gap.
-    double gap_cells = 2.;
+    double gap_cells = resolved_gap_cells;
     /// auto (or automatic), direct or iterative.
     std::string linear_solver = "automatic";
     /// Nitsche's penalty, times eta / h (CutStokesInclusion::Settings).
