@@ -130,22 +130,32 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   redirect_warnings();
 
-  const auto minimum_gap = [](const bool corrected) {
+  // The auto values: the resolution the correction takes over (the pair
+  // checks below run at them).
+  const auto cut_settings = [](const bool corrected) {
     return Fidus::read_parameters_from_string(
              std::string("set Dimension = 2\nsubsection Fluid\n"
                          "  set Model = cut finite element\n"
                          "  set Lubrication correction = ") +
              (corrected ? "true" : "false") + "\nend\n")
-      .cut_element.minimum_gap;
+      .cut_element;
   };
   check_range("Cut minimum gap = auto with the correction",
-              minimum_gap(true),
+              cut_settings(true).minimum_gap,
               0.02,
               0.02);
   check_range("Cut minimum gap = auto without it",
-              minimum_gap(false),
+              cut_settings(false).minimum_gap,
               1e-4,
               1e-4);
+  check_range("Cut gap cells = auto with the correction",
+              cut_settings(true).gap_cells,
+              1,
+              1);
+  check_range("Cut gap cells = auto without it",
+              cut_settings(false).gap_cells,
+              2,
+              2);
 
   for (const double h_over_a : {0.01, 0.002})
     {
