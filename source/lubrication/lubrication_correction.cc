@@ -652,10 +652,8 @@ namespace Fidus::Contact
                                0.,
                                h_bond,
                                stat,
-                               shrunk ?
-                                 std::array<double, 2>{
-                                   {fluid_radii[i], fluid_radii[j]}} :
-                                 std::array<double, 2>{{-1., -1.}}) :
+                               {{shrunk ? fluid_radii[i] : -1.,
+                                 shrunk ? fluid_radii[j] : -1.}}) :
               fill_resistances(b, a_small, h_c, h_f, h_o, h_t, stat))
           {
             bond.push_back(b);
