@@ -28,7 +28,7 @@ namespace Fidus
       Patterns::Selection("auto|automatic|direct|iterative"),
       "With 'cut finite element': 'direct' factorises the symmetric "
       "system (MUMPS, LDL^T) over all the MPI ranks; 'iterative' runs "
-      "FGMRES with a block preconditioner (a geometric multigrid V-cycle "
+      "FGMRES with a block preconditioner (one geometric multigrid cycle "
       "for the velocities and rigid motions) to 'Cut linear tolerance' "
       "(on more ranks the velocity block and its multigrid are split "
       "among them, the rest runs on every rank); 'auto' (or 'automatic', "

@@ -690,7 +690,7 @@ namespace Fidus
       r_u[k] = src[velocity[k]] - coupling_product[k];
     if (multigrid)
       {
-        // K^-1 by one V-cycle on K.
+        // K^-1 by one multigrid cycle on K.
         for (unsigned int k = 0; k < rigid.size(); ++k)
           r_u[n_u + k] = src[rigid[k]] - coupling_product[n_u + k];
         multigrid->vmult(y_u, r_u);

@@ -347,7 +347,7 @@ namespace Fidus
   CutSaddlePointSolver<dim>::split_vmult(PartsVector       &dst,
                                          const PartsVector &src) const
   {
-    // z_p = -S^-1 r_p, then one V-cycle on r_K - B^T z_p.
+    // z_p = -S^-1 r_p, then one multigrid cycle on r_K - B^T z_p.
     split_pressure_inverse(dst.block(1), src.block(1));
     bt_rows->vmult(k_in, dst.block(1));
     k_in.sadd(-1., 1., src.block(0));

@@ -569,19 +569,37 @@ namespace Fidus
     residual.clear();
     level_rhs.clear();
     level_solution.clear();
+    again_rhs_f.clear();
+    again_f.clear();
+    again_rhs.clear();
+    again.clear();
     for (unsigned int l = 0; l < n_levels; ++l)
-      if (settings.single_precision)
-        {
-          residual_f.emplace_back(owned[l], communicator);
-          rhs_f.emplace_back(owned[l], communicator);
-          solution_f.emplace_back(owned[l], communicator);
-        }
-      else
-        {
-          residual.emplace_back(owned[l], communicator);
-          level_rhs.emplace_back(owned[l], communicator);
-          level_solution.emplace_back(owned[l], communicator);
-        }
+      {
+        const bool revisited = l >= 2 && visits_of_next(l - 1) > 1;
+        if (settings.single_precision)
+          {
+            residual_f.emplace_back(owned[l], communicator);
+            rhs_f.emplace_back(owned[l], communicator);
+            solution_f.emplace_back(owned[l], communicator);
+            again_rhs_f.emplace_back(revisited ? owned[l] :
+                                                 IndexSet(owned[l].size()),
+                                     communicator);
+            again_f.emplace_back(revisited ? owned[l] :
+                                             IndexSet(owned[l].size()),
+                                 communicator);
+          }
+        else
+          {
+            residual.emplace_back(owned[l], communicator);
+            level_rhs.emplace_back(owned[l], communicator);
+            level_solution.emplace_back(owned[l], communicator);
+            again_rhs.emplace_back(revisited ? owned[l] :
+                                               IndexSet(owned[l].size()),
+                                   communicator);
+            again.emplace_back(revisited ? owned[l] : IndexSet(owned[l].size()),
+                               communicator);
+          }
+      }
     coarse_x.reinit(coarsest_matrix.m());
     coarse_b.reinit(coarsest_matrix.m());
     src_f.reinit(settings.single_precision ? owned[0] : IndexSet(),
@@ -598,6 +616,18 @@ namespace Fidus
   CutVelocityMultigrid<dim>::level_matrix(const unsigned int level) const
   {
     return level == 0 ? *finest_double : *coarse[level - 1];
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  CutVelocityMultigrid<dim>::visits_of_next(const unsigned int level) const
+  {
+    // Level 1 is visited once per cycle: it holds about a third of the
+    // finest level's rows, and a second visit of it cost more than it
+    // saved; the coarsest is solved exactly, once is enough.
+    return level >= 1 && level + 2 < owned.size() ? settings.coarse_visits : 1;
   }
 
 
@@ -626,9 +656,9 @@ namespace Fidus
   template <int dim>
   template <typename Number>
   void
-  CutVelocityMultigrid<dim>::v_cycle(const unsigned int         level,
-                                     LevelVector<Number>       &x,
-                                     const LevelVector<Number> &b) const
+  CutVelocityMultigrid<dim>::cycle(const unsigned int         level,
+                                   LevelVector<Number>       &x,
+                                   const LevelVector<Number> &b) const
   {
     if (level + 1 == owned.size())
       {
@@ -642,7 +672,15 @@ namespace Fidus
         a.vmult(residual_f[level], x);
         residual_f[level].sadd(-1.f, 1.f, b);
         prolongation_float[level]->Tvmult(rhs_f[level + 1], residual_f[level]);
-        v_cycle(level + 1, solution_f[level + 1], rhs_f[level + 1]);
+        cycle(level + 1, solution_f[level + 1], rhs_f[level + 1]);
+        for (unsigned int visit = 1; visit < visits_of_next(level); ++visit)
+          {
+            level_float[level + 1]->vmult(again_rhs_f[level + 1],
+                                          solution_f[level + 1]);
+            again_rhs_f[level + 1].sadd(-1.f, 1.f, rhs_f[level + 1]);
+            cycle(level + 1, again_f[level + 1], again_rhs_f[level + 1]);
+            solution_f[level + 1] += again_f[level + 1];
+          }
         prolongation_float[level]->vmult_add(x, solution_f[level + 1]);
         smoother_float[level]->step(x, b);
       }
@@ -653,7 +691,15 @@ namespace Fidus
         a.vmult(residual[level], x);
         residual[level].sadd(-1., 1., b);
         prolongation[level]->Tvmult(level_rhs[level + 1], residual[level]);
-        v_cycle(level + 1, level_solution[level + 1], level_rhs[level + 1]);
+        cycle(level + 1, level_solution[level + 1], level_rhs[level + 1]);
+        for (unsigned int visit = 1; visit < visits_of_next(level); ++visit)
+          {
+            level_matrix(level + 1).vmult(again_rhs[level + 1],
+                                          level_solution[level + 1]);
+            again_rhs[level + 1].sadd(-1., 1., level_rhs[level + 1]);
+            cycle(level + 1, again[level + 1], again_rhs[level + 1]);
+            level_solution[level + 1] += again[level + 1];
+          }
         prolongation[level]->vmult_add(x, level_solution[level + 1]);
         smoother[level]->step(x, b);
       }
@@ -669,11 +715,11 @@ namespace Fidus
   {
     if (!settings.single_precision)
       {
-        v_cycle(0, dst, src);
+        cycle(0, dst, src);
         return;
       }
     std::copy(src.begin(), src.end(), src_f.begin());
-    v_cycle(0, dst_f, src_f);
+    cycle(0, dst_f, src_f);
     std::copy(dst_f.begin(), dst_f.end(), dst.begin());
   }
 
@@ -688,12 +734,12 @@ namespace Fidus
     if (settings.single_precision)
       {
         std::copy(src.begin(), src.end(), src_f.begin());
-        v_cycle(0, dst_f, src_f);
+        cycle(0, dst_f, src_f);
         std::copy(dst_f.begin(), dst_f.end(), dst.begin());
         return;
       }
     std::copy(src.begin(), src.end(), src_d.begin());
-    v_cycle(0, dst_d, src_d);
+    cycle(0, dst_d, src_d);
     std::copy(dst_d.begin(), dst_d.end(), dst.begin());
   }
 

@@ -59,7 +59,7 @@ namespace Fidus
    * AMG cycle on it, used before, left FGMRES 10-45 % more iterations in
    * 3D: doc/theory/cut_element.md, "The pressure side"; FGMRES takes a
    * preconditioner that changes from one application to the next). K^-1 is, by
-   * default, one V-cycle of the geometric multigrid CutVelocityMultigrid on K,
+   * default, one cycle of the geometric multigrid CutVelocityMultigrid on K,
    * which carries the rigid unknowns through all its levels. Without it
    * (VelocityPreconditioner::amg of CutStokesInclusion), K is inverted through
    * its Schur complement on the rigid unknowns: W = A_uu^-1 A_uV is solved for
@@ -133,7 +133,7 @@ namespace Fidus
     /**
      * Set up for the (scaled) system @p matrix, with the pressure mass
      * matrix @p pressure_mass (same numbering; only its pressure rows are
-     * read). With @p multigrid, one V-cycle of it stands for A_uu^-1 (it is
+     * read). With @p multigrid, one cycle of it stands for A_uu^-1 (it is
      * initialised here), and the solver keeps the system as its blocks
      * (K, B^T, B and the pressure block, which the preconditioner needs
      * anyway) and multiplies by them: it reads neither @p matrix nor

@@ -97,7 +97,7 @@ namespace Fidus
     {
       /// One ML AMG cycle.
       amg,
-      /// One V-cycle of the geometric multigrid (CutVelocityMultigrid).
+      /// One cycle of the geometric multigrid (CutVelocityMultigrid).
       multigrid
     };
 
@@ -204,7 +204,7 @@ namespace Fidus
       /// Matrix-vector products per smoothing of the velocity multigrid,
       /// before and after (CutVelocityMultigrid::Settings).
       unsigned int smoother_degree = 2;
-      /// The velocity multigrid's V-cycle in single precision
+      /// The velocity multigrid's cycle in single precision
       /// (CutVelocityMultigrid::Settings); false: double (for comparisons).
       bool single_precision_cycle = true;
       /// The velocity multigrid's levels built without the couplings

@@ -48,8 +48,18 @@ namespace Fidus
    *   preconditioned by CutCellBlockJacobi: point Jacobi plus exact solves
    *   on the unknowns of each cell that a particle surface crosses (the
    *   Nitsche terms and ghost penalties couple those strongly), before and
-   *   after the coarse correction (so one V-cycle is symmetric and serves
+   *   after the coarse correction (so one cycle is symmetric and serves
    *   CG); the coarsest level is factorised.
+   * - **The cycle** (Settings::coarse_visits): a V from the finest level
+   *   to level 1, a W below it (each level below 1 corrected twice per
+   *   visit of the one above). Where the gaps are refined through many
+   *   levels with most cells cut (the dense 3D scenes), a V-cycle's
+   *   coarse correction is the weak part: on the 37 spheres of the
+   *   shipped 3D scene the W below level 1 takes 64 FGMRES iterations
+   *   instead of 90, in a fifth less FGMRES time (a W from the finest
+   *   level took 58, but cost more than it saved), and it changes one
+   *   sphere's and the paper's pair's counts by two at most
+   *   (doc/theory/cut_element.md, "Solvers").
    * - **Separate components** (Settings::separate_components): the
    *   levels are built from the velocity block without its couplings
    *   between different components, A_cc for each component c plus the
@@ -77,20 +87,21 @@ namespace Fidus
   class CutVelocityMultigrid
   {
   public:
-    /// Smoothing of the V-cycle.
+    /// The cycle and its smoothing.
     struct Settings
     {
       /// Matrix-vector products per smoothing, before and after.
       unsigned int smoother_degree = 2;
       /// Ratio of the largest eigenvalue to the smallest one smoothed (15
       /// suits point Jacobi; with the blocks, 8 took a few iterations
-      /// fewer).
+      /// fewer; 30 took a tenth fewer on the dense 3D scene, but 60 % more
+      /// on the 2D model problems of fluid/cut_multigrid).
       double smoothing_range = 8.;
       /// Cut-cell blocks in the smoother's preconditioner
       /// (CutCellBlockJacobi) on every level above the coarsest; without,
       /// point Jacobi.
       bool cut_cell_blocks = true;
-      /// The V-cycle in single precision above the coarsest level (a
+      /// The cycle in single precision above the coarsest level (a
       /// quarter less FGMRES time in 3D, the same iterations); false:
       /// double, as before (for comparisons).
       bool single_precision = true;
@@ -100,6 +111,9 @@ namespace Fidus
       /// the full block bounds within a factor 2 where the velocity is
       /// held on the boundary (Korn). false: the full block, as before.
       bool separate_components = false;
+      /// Cycles on each level below level 1 per visit of the level above:
+      /// 1 a V-cycle, 2 a W-cycle below level 1 (visits_of_next()).
+      unsigned int coarse_visits = 2;
     };
 
     /**
@@ -150,7 +164,7 @@ namespace Fidus
                const std::vector<unsigned int> &velocity_unknowns,
                const unsigned int               n_rigid = 0);
 
-    /// dst = one V-cycle applied to src (zero initial guess), after the
+    /// dst = one cycle applied to src (zero initial guess), after the
     /// first initialize().
     void
     vmult(Vector<double> &dst, const Vector<double> &src) const;
@@ -226,12 +240,20 @@ namespace Fidus
     void
     setup_cycle();
 
-    /// x = V-cycle on level @p level for the right-hand side @p b.
+    /// x = one cycle from level @p level down for the right-hand side @p b:
+    /// smoothing, the next coarser level's correction
+    /// (visits_of_next(level) cycles on it), smoothing.
     template <typename Number>
     void
-    v_cycle(const unsigned int         level,
-            LevelVector<Number>       &x,
-            const LevelVector<Number> &b) const;
+    cycle(const unsigned int         level,
+          LevelVector<Number>       &x,
+          const LevelVector<Number> &b) const;
+
+    /// How many cycles on level @p level + 1 correct level @p level:
+    /// Settings::coarse_visits below level 1 (a W-cycle there), once
+    /// from the finest level and onto the coarsest.
+    unsigned int
+    visits_of_next(const unsigned int level) const;
 
     /// x = the coarsest level's solution for @p b.
     template <typename Number>
@@ -274,9 +296,13 @@ namespace Fidus
     mutable std::vector<LevelVector<float>>  residual_f, rhs_f, solution_f;
     mutable std::vector<LevelVector<double>> residual, level_rhs,
       level_solution;
-    mutable LevelVector<float>  src_f, dst_f;
-    mutable LevelVector<double> src_d, dst_d;
-    mutable Vector<double>      coarse_x, coarse_b;
+    /// With Settings::coarse_visits > 1: a level's residual and correction
+    /// at its second and later visits.
+    mutable std::vector<LevelVector<float>>  again_rhs_f, again_f;
+    mutable std::vector<LevelVector<double>> again_rhs, again;
+    mutable LevelVector<float>               src_f, dst_f;
+    mutable LevelVector<double>              src_d, dst_d;
+    mutable Vector<double>                   coarse_x, coarse_b;
 
     /// The operator of @p level in double below the finest (or the
     /// finest's copy for the double V-cycle).
