@@ -52,14 +52,16 @@ namespace Fidus
    *   CG); the coarsest level is factorised.
    * - **The cycle** (Settings::coarse_visits): a V from the finest level
    *   to level 1, a W below it (each level below 1 corrected twice per
-   *   visit of the one above). Where the gaps are refined through many
+   *   visit of the one above, where it has at most half that one's rows,
+   *   so that a chain of slowly shrinking levels under a deeply refined
+   *   gap costs no more than in a V). Where the gaps are refined through many
    *   levels with most cells cut (the dense 3D scenes), a V-cycle's
    *   coarse correction is the weak part: on the 37 spheres of the
    *   shipped 3D scene the W below level 1 takes 64 FGMRES iterations
    *   instead of 90, in a fifth less FGMRES time (a W from the finest
-   *   level took 58, but cost more than it saved), and it changes one
-   *   sphere's and the paper's pair's counts by two at most
-   *   (doc/theory/cut_element.md, "Solvers").
+   *   level took 58, but cost more than it saved); on one sphere and the
+   *   paper's pair it takes 0 to 5 iterations fewer, at a few per cent
+   *   of time either way (doc/theory/cut_element.md, "Solvers").
    * - **Separate components** (Settings::separate_components): the
    *   levels are built from the velocity block without its couplings
    *   between different components, A_cc for each component c plus the
@@ -111,8 +113,9 @@ namespace Fidus
       /// the full block bounds within a factor 2 where the velocity is
       /// held on the boundary (Korn). false: the full block, as before.
       bool separate_components = false;
-      /// Cycles on each level below level 1 per visit of the level above:
-      /// 1 a V-cycle, 2 a W-cycle below level 1 (visits_of_next()).
+      /// Cycles on each level below level 1 per visit of the level above
+      /// (where it has at most half that one's rows): 1 a V-cycle, 2 a
+      /// W-cycle below level 1 (visits_of_next()).
       unsigned int coarse_visits = 2;
     };
 
@@ -250,8 +253,9 @@ namespace Fidus
           const LevelVector<Number> &b) const;
 
     /// How many cycles on level @p level + 1 correct level @p level:
-    /// Settings::coarse_visits below level 1 (a W-cycle there), once
-    /// from the finest level and onto the coarsest.
+    /// Settings::coarse_visits below level 1 where level @p level + 1 has
+    /// at most half the rows of level @p level (a W-cycle there), once
+    /// otherwise, from the finest level and onto the coarsest.
     unsigned int
     visits_of_next(const unsigned int level) const;
 
