@@ -575,29 +575,26 @@ namespace Fidus
     again.clear();
     for (unsigned int l = 0; l < n_levels; ++l)
       {
-        const bool revisited = l >= 2 && visits_of_next(l - 1) > 1;
+        // A level visited more than once needs its own residual and
+        // correction for the later visits; the others hold no rows.
+        const IndexSet again_rows = l >= 2 && visits_of_next(l - 1) > 1 ?
+                                      owned[l] :
+                                      IndexSet(owned[l].size());
         if (settings.single_precision)
           {
             residual_f.emplace_back(owned[l], communicator);
             rhs_f.emplace_back(owned[l], communicator);
             solution_f.emplace_back(owned[l], communicator);
-            again_rhs_f.emplace_back(revisited ? owned[l] :
-                                                 IndexSet(owned[l].size()),
-                                     communicator);
-            again_f.emplace_back(revisited ? owned[l] :
-                                             IndexSet(owned[l].size()),
-                                 communicator);
+            again_rhs_f.emplace_back(again_rows, communicator);
+            again_f.emplace_back(again_rows, communicator);
           }
         else
           {
             residual.emplace_back(owned[l], communicator);
             level_rhs.emplace_back(owned[l], communicator);
             level_solution.emplace_back(owned[l], communicator);
-            again_rhs.emplace_back(revisited ? owned[l] :
-                                               IndexSet(owned[l].size()),
-                                   communicator);
-            again.emplace_back(revisited ? owned[l] : IndexSet(owned[l].size()),
-                               communicator);
+            again_rhs.emplace_back(again_rows, communicator);
+            again.emplace_back(again_rows, communicator);
           }
       }
     coarse_x.reinit(coarsest_matrix.m());
