@@ -30,6 +30,8 @@
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/fluid/cut_element/cut_system_blocks.h>
 #include <fidus/fluid/cut_element/element_sparsity.h>
+#include <fidus/fluid/cut_element/stokes_volume_kernel.h>
+#include <fidus/fluid/cut_element/taylor_hood_layout.h>
 #include <fidus/verification/exact_rigid_inclusion.h>
 #include <map>
 #include <memory>
@@ -376,15 +378,10 @@ namespace Fidus
       NonMatching::QuadratureGenerator<dim> generator;
       FEValues<dim>                         fe_fluid;
       std::vector<types::global_dof_index>  dofs;
-      /// The pressure of each shape function at one point.
-      std::vector<double> q_shape;
-      /// The volume terms' weighted columns and their signed copy, and
-      /// their product (add_volume()).
-      FullMatrix<double> columns, signed_columns, product;
-      /// Per extended index, on the surface: the trace of v - w_v, the
-      /// viscous traction and the pressure.
-      std::vector<Tensor<1, dim>> jump, traction;
-      std::vector<double>         p_shape;
+      /// The volume terms' kernel (add_volume()).
+      StokesVolumeKernel<dim> volume;
+      /// The surface terms' factors and their product (add_nitsche()).
+      FullMatrix<double> surface_left, surface_right, product;
     };
 
     /// One cell's matrices on its shape functions and its particle's rigid
@@ -421,9 +418,19 @@ namespace Fidus
       FESubfaceValues<dim>                     fe_coarser;
       std::vector<types::global_dof_index>     dofs, neighbour_dofs;
       std::vector<std::array<unsigned int, 2>> local_of;
-      FullMatrix<double>                       jumps, signed_jumps;
-      std::vector<Tensor<1, dim>>              d1, d2;
-      std::vector<double>                      dp;
+      const TaylorHoodLayout<dim>              layout;
+      /// The cell's index k of each component-0 velocity function (its
+      /// scalar phi_k), and the rank of each pressure function.
+      std::vector<unsigned int> scalar_of, pressure_rank;
+      /// Per side, the face's scalar (and pressure) function of each of
+      /// the cell's; per face scalar, its unknowns on the dim components;
+      /// per face pressure function, its unknown.
+      std::array<std::vector<unsigned int>, 2>   scalar_id, pressure_id;
+      std::vector<std::array<unsigned int, dim>> velocity_of;
+      std::vector<unsigned int>                  pressure_of;
+      /// The weighted jumps per point (columns) and their products.
+      FullMatrix<double> velocity_jumps, pressure_jumps, velocity_part,
+        pressure_part;
     };
 
     /// One ghost-penalty face's matrix on the union of its two cells'

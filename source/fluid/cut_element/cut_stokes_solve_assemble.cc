@@ -113,10 +113,7 @@ namespace Fidus
                solve.q_cell,
                update_gradients | update_values | update_JxW_values)
     , dofs(solve.n_local)
-    , q_shape(solve.n_local)
-    , jump(solve.n_ext)
-    , traction(solve.n_ext)
-    , p_shape(solve.n_ext)
+    , volume(solve.taylor_hood)
   {}
 
   template <int dim>
@@ -132,60 +129,9 @@ namespace Fidus
                                   CellScratch         &scratch,
                                   CellCopy            &copy) const
   {
-    // The fluid terms of one cell on the quadrature @p fe_values as one
-    // matrix product (BLAS), local += J S^T: per point, the columns of J
-    // hold each shape function's strain (its symmetric components, the
-    // off-diagonal ones times sqrt 2, so that the column products give
-    // eps_i : eps_j), divergence and pressure, weighted by the square
-    // roots of 2 eta JxW and JxW; S holds the same strains and minus the
-    // pressure and divergence, so that the product is
-    // 2 eta eps_i : eps_j - div_i q_j - q_i div_j. A cut cell has hundreds
-    // of quadrature points, and a double loop over the shape functions per
-    // point was most of its assembly.
-    constexpr unsigned int n_strain = dim * (dim + 1) / 2;
-    constexpr unsigned int n_column = n_strain + 2;
-    const unsigned int     n_q      = fe_values.n_quadrature_points;
-    auto                  &J = scratch.columns, &S = scratch.signed_columns;
-    J.reinit(n_local, n_q * n_column);
-    S.reinit(n_local, n_q * n_column);
-    auto &q_shape = scratch.q_shape;
-    for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const double JxW      = fe_values.JxW(q),
-                     w_strain = std::sqrt(2. * eta * JxW), w = std::sqrt(JxW);
-        const unsigned int first = q * n_column;
-        for (unsigned int i = 0; i < n_local; ++i)
-          {
-            const SymmetricTensor<2, dim> e =
-              fe_values[velocity].symmetric_gradient(i, q);
-            unsigned int c = first;
-            for (unsigned int a = 0; a < dim; ++a)
-              J(i, c++) = w_strain * e[a][a];
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = a + 1; b < dim; ++b)
-                J(i, c++) = w_strain * std::sqrt(2.) * e[a][b];
-            for (unsigned int k = first; k < first + n_strain; ++k)
-              S(i, k) = J(i, k);
-            const double d         = w * fe_values[velocity].divergence(i, q);
-            q_shape[i]             = fe_values[pressure].value(i, q);
-            const double p         = w * q_shape[i];
-            J(i, first + n_strain) = d;
-            J(i, first + n_strain + 1) = p;
-            S(i, first + n_strain)     = -p;
-            S(i, first + n_strain + 1) = -d;
-          }
-        for (unsigned int a = 0; a < pressure_shapes.size(); ++a)
-          for (unsigned int b = 0; b < pressure_shapes.size(); ++b)
-            copy.local_pressure(a, b) += JxW * q_shape[pressure_shapes[a]] *
-                                         q_shape[pressure_shapes[b]] / eta;
-      }
     // local is n_ext x n_ext; the volume terms fill its first n_local rows
     // and columns.
-    auto &product = scratch.product;
-    product_transposed(J, S, product);
-    for (unsigned int i = 0; i < n_local; ++i)
-      for (unsigned int j = 0; j < n_local; ++j)
-        copy.local(i, j) += product(i, j);
+    scratch.volume.add(fe_values, eta, copy.local, copy.local_pressure);
   }
 
   template <int dim>
@@ -203,37 +149,50 @@ namespace Fidus
                                                          surface_flags);
     fe_surface.reinit(cell);
     const double gamma = s.nitsche * eta / h;
-    // Per extended index I: the trace of v - w_v, the traction's
-    // viscous part 2 eta eps(v) n and the pressure shape value.
-    auto &jump = scratch.jump, &traction = scratch.traction;
-    auto &p_shape = scratch.p_shape;
-    for (unsigned int q = 0; q < q_surface.size(); ++q)
+    // Per extended index i and point: the trace v_i of v - w_v and
+    // g_i = -2 eta eps(v_i) n + p_i n + gamma/2 v_i, so that the terms
+    // -t_j.v_i + p_j v_i.n - t_i.v_j + p_i v_j.n + gamma v_i.v_j are
+    // v_i.g_j + g_i.v_j: the matrix is L R^T with the rows of L holding
+    // (v_i, g_i) and those of R (g_i, v_i), times sqrt(JxW) (one product
+    // instead of a double loop over the shape functions per point).
+    const unsigned int n_q = q_surface.size();
+    auto              &L = scratch.surface_left, &R = scratch.surface_right;
+    L.reinit(n_ext, n_q * 2 * dim);
+    R.reinit(n_ext, n_q * 2 * dim);
+    for (unsigned int q = 0; q < n_q; ++q)
       {
         // The fluid's outward normal points into the particle.
-        const Tensor<1, dim> n = -fe_surface.normal_vector(q);
-        const Tensor<1, dim> r = fe_surface.quadrature_point(q) - P.center;
+        const Tensor<1, dim> n    = -fe_surface.normal_vector(q);
+        const Tensor<1, dim> r    = fe_surface.quadrature_point(q) - P.center;
+        const double         w    = std::sqrt(fe_surface.JxW(q));
+        const unsigned int   v_at = 2 * dim * q, g_at = v_at + dim;
+        const auto           set = [&](const unsigned int    i,
+                             const Tensor<1, dim> &v,
+                             const Tensor<1, dim> &g) {
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              L(i, v_at + c) = R(i, g_at + c) = w * v[c];
+              L(i, g_at + c) = R(i, v_at + c) = w * g[c];
+            }
+        };
         for (unsigned int i = 0; i < n_local; ++i)
           {
-            jump[i] = fe_surface[velocity].value(i, q);
-            traction[i] =
-              2. * eta * (fe_surface[velocity].symmetric_gradient(i, q) * n);
-            p_shape[i] = fe_surface[pressure].value(i, q);
+            const Tensor<1, dim> v = fe_surface[velocity].value(i, q);
+            set(i,
+                v,
+                -2. * eta *
+                    (fe_surface[velocity].symmetric_gradient(i, q) * n) +
+                  fe_surface[pressure].value(i, q) * n + 0.5 * gamma * v);
           }
         for (unsigned int k = 0; k < n_rigid; ++k)
           {
-            jump[n_local + k]     = -rigid_mode<dim>(k, r);
-            traction[n_local + k] = Tensor<1, dim>();
-            p_shape[n_local + k]  = 0.;
+            const Tensor<1, dim> v = -rigid_mode<dim>(k, r);
+            set(n_local + k, v, 0.5 * gamma * v);
           }
-        const double JxW = fe_surface.JxW(q);
-        for (unsigned int i = 0; i < n_ext; ++i)
-          for (unsigned int j = 0; j < n_ext; ++j)
-            copy.local(i, j) +=
-              (-traction[j] * jump[i] + p_shape[j] * (jump[i] * n) -
-               traction[i] * jump[j] + p_shape[i] * (jump[j] * n) +
-               gamma * jump[i] * jump[j]) *
-              JxW;
       }
+    auto &product = scratch.product;
+    product_transposed(L, R, product);
+    copy.local.add(1., product);
   }
 
   template <int dim>
@@ -685,7 +644,20 @@ namespace Fidus
     , dofs(solve.n_local)
     , neighbour_dofs(solve.n_local)
     , local_of(solve.n_local)
-  {}
+    , layout(solve.taylor_hood)
+    , scalar_of(solve.n_local)
+    , pressure_rank(solve.n_local)
+  {
+    const unsigned int n_s = layout.velocity[0].size();
+    for (auto &ids : scalar_id)
+      ids.resize(n_s);
+    for (auto &ids : pressure_id)
+      ids.resize(layout.pressure.size());
+    for (unsigned int k = 0; k < n_s; ++k)
+      scalar_of[layout.velocity[0][k]] = k;
+    for (unsigned int a = 0; a < layout.pressure.size(); ++a)
+      pressure_rank[layout.pressure[a]] = a;
+  }
 
   template <int dim>
   void
@@ -729,19 +701,57 @@ namespace Fidus
           }
       }
     const unsigned int n_face = face_dofs.size();
-    // Per quadrature point: the dim first and dim second normal-derivative
-    // jumps of the velocity and the pressure's jump.
-    constexpr unsigned int n_jumps = 2 * dim + 1;
     // The face matrix is sum_q JxW (w_v h d1 d1^T + w_v h^3 d2 d2^T -
-    // w_p h^3 dp dp^T): the jumps, weighted by the square roots, are
-    // the columns of J, and the face matrix is J S J^T with S the
-    // signs (one matrix product instead of a double loop per point).
-    auto &jumps = scratch.jumps, &signed_jumps = scratch.signed_jumps;
-    auto &d1 = scratch.d1, &d2 = scratch.d2;
-    auto &dp = scratch.dp;
-    copy.face_matrix.reinit(n_face, n_face);
-    jumps.reinit(n_face, q_face.size() * n_jumps);
-    signed_jumps.reinit(n_face, q_face.size() * n_jumps);
+    // w_p h^3 dp dp^T), d1 and d2 the jumps of the velocity's first and
+    // second normal derivatives, dp the pressure gradient's normal jump.
+    // A velocity function phi_k e_c jumps in its component c only, by the
+    // jump of its scalar phi_k, so the velocity part is one matrix of the
+    // face's scalar Q2 functions, repeated on each component: its product
+    // has the scalar functions as rows (a third of the velocity ones) and
+    // two columns per point (instead of 2 dim + 1 for all of them).
+    const auto        &layout = scratch.layout;
+    const unsigned int n_s    = layout.velocity[0].size(),
+                       n_p    = layout.pressure.size();
+    // The face's scalar and pressure functions: each side's, a shared one
+    // once; scalar S is the face unknowns velocity_of[S][c] for c < dim.
+    auto &scalar_id = scratch.scalar_id, &pressure_id = scratch.pressure_id;
+    auto &velocity_of = scratch.velocity_of;
+    auto &pressure_of = scratch.pressure_of;
+    velocity_of.clear();
+    pressure_of.clear();
+    for (unsigned int side = 0; side < 2; ++side)
+      {
+        for (unsigned int k = 0; k < n_s; ++k)
+          {
+            const unsigned int first = local_of[layout.velocity[0][k]][side];
+            if (first < n_local && side == 1)
+              {
+                // Shared with the cell: its scalar is the cell's one there.
+                scalar_id[1][k] = scalar_id[0][scratch.scalar_of[first]];
+                continue;
+              }
+            scalar_id[side][k] = velocity_of.size();
+            std::array<unsigned int, dim> at;
+            for (unsigned int c = 0; c < dim; ++c)
+              at[c] = local_of[layout.velocity[c][k]][side];
+            velocity_of.push_back(at);
+          }
+        for (unsigned int a = 0; a < n_p; ++a)
+          {
+            const unsigned int at = local_of[layout.pressure[a]][side];
+            if (at < n_local && side == 1)
+              {
+                pressure_id[1][a] = pressure_id[0][scratch.pressure_rank[at]];
+                continue;
+              }
+            pressure_id[side][a] = pressure_of.size();
+            pressure_of.push_back(at);
+          }
+      }
+    const unsigned int n_scalar = velocity_of.size(), n_pf = pressure_of.size();
+    auto              &A = scratch.velocity_jumps, &B = scratch.pressure_jumps;
+    A.reinit(n_scalar, 2 * q_face.size());
+    B.reinit(n_pf, q_face.size());
     // The cells' sizes across the face (the derivatives jumped are normal
     // to it); across a hanging face, the mean of the two.
     const unsigned int axis = ghost.face / 2;
@@ -754,46 +764,41 @@ namespace Fidus
               .norm() > 1e-12 * h)
           throw std::logic_error("CutStokesInclusion: face quadrature "
                                  "points do not match");
-        const Tensor<1, dim> n = fe_face.normal_vector(q);
-        d1.assign(n_face, Tensor<1, dim>());
-        d2.assign(n_face, Tensor<1, dim>());
-        dp.assign(n_face, 0.);
+        const Tensor<1, dim> n   = fe_face.normal_vector(q);
+        const double         JxW = fe_face.JxW(q);
+        const double         w1  = std::sqrt(s.ghost_velocity * eta * h * JxW),
+                     w2 = std::sqrt(s.ghost_velocity * eta * h * h * h * JxW),
+                     wp = std::sqrt(s.ghost_pressure / eta * h * h * h * JxW);
         for (unsigned int side = 0; side < 2; ++side)
           {
             const FEFaceValuesBase<dim> &fv   = side == 0 ? fe_face : fe_other;
             const double                 sign = side == 0 ? 1. : -1.;
-            for (unsigned int i = 0; i < n_local; ++i)
+            for (unsigned int k = 0; k < n_s; ++k)
               {
-                const unsigned int I    = local_of[i][side];
-                const auto         grad = fv[velocity].gradient(i, q);
-                const auto         hess = fv[velocity].hessian(i, q);
-                for (unsigned int c = 0; c < dim; ++c)
-                  {
-                    d1[I][c] += sign * (grad[c] * n);
-                    d2[I][c] += sign * (n * (hess[c] * n));
-                  }
-                dp[I] += sign * (fv[pressure].gradient(i, q) * n);
+                const unsigned int i = layout.velocity[0][k];
+                const unsigned int S = scalar_id[side][k];
+                A(S, 2 * q) += sign * w1 * (fv.shape_grad(i, q) * n);
+                A(S, 2 * q + 1) +=
+                  sign * w2 * (n * (fv.shape_hessian(i, q) * n));
               }
-          }
-        const double JxW = fe_face.JxW(q);
-        const double w1  = std::sqrt(s.ghost_velocity * eta * h * JxW),
-                     w2  = std::sqrt(s.ghost_velocity * eta * h * h * h * JxW),
-                     wp  = std::sqrt(s.ghost_pressure / eta * h * h * h * JxW);
-        const unsigned int first = q * n_jumps;
-        for (unsigned int i = 0; i < n_face; ++i)
-          {
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                jumps(i, first + c) = signed_jumps(i, first + c) =
-                  w1 * d1[i][c];
-                jumps(i, first + dim + c) = signed_jumps(i, first + dim + c) =
-                  w2 * d2[i][c];
-              }
-            jumps(i, first + 2 * dim)        = wp * dp[i];
-            signed_jumps(i, first + 2 * dim) = -wp * dp[i];
+            for (unsigned int a = 0; a < n_p; ++a)
+              B(pressure_id[side][a], q) +=
+                sign * wp * (fv.shape_grad(layout.pressure[a], q) * n);
           }
       }
-    product_transposed(jumps, signed_jumps, copy.face_matrix);
+    auto &velocity_part = scratch.velocity_part,
+         &pressure_part = scratch.pressure_part;
+    product_transposed(A, A, velocity_part);
+    product_transposed(B, B, pressure_part);
+    copy.face_matrix.reinit(n_face, n_face);
+    for (unsigned int S = 0; S < n_scalar; ++S)
+      for (unsigned int T = 0; T < n_scalar; ++T)
+        for (unsigned int c = 0; c < dim; ++c)
+          copy.face_matrix(velocity_of[S][c], velocity_of[T][c]) =
+            velocity_part(S, T);
+    for (unsigned int P = 0; P < n_pf; ++P)
+      for (unsigned int Q = 0; Q < n_pf; ++Q)
+        copy.face_matrix(pressure_of[P], pressure_of[Q]) = -pressure_part(P, Q);
   }
 
   template <int dim>
