@@ -96,6 +96,11 @@ namespace Fidus
             continue;
           fine_dofs.resize(fe.n_dofs_per_cell());
           cell->get_dof_indices(fine_dofs);
+          // A cell none of whose rows is wanted (or left) costs no search.
+          if (std::none_of(fine_dofs.begin(),
+                           fine_dofs.end(),
+                           [&](const auto i) { return keep[i] && !done[i]; }))
+            continue;
           const auto covering =
             covering_cell<dim>(cell, coarse.get_triangulation());
           const typename DoFHandler<dim>::cell_iterator coarse_cell(
@@ -480,11 +485,19 @@ namespace Fidus
     const unsigned int               n_rigid) const
   {
     const DoFHandler<dim> &fine = l == 0 ? system : *levels.dofs[l];
-    std::vector<bool>      keep(fine.n_dofs());
+    // Only this rank's rows (a contiguous range of level l's numbering):
+    // on more ranks each computes its own share of P.
+    const unsigned int first =
+      owned[l].n_elements() > 0 ? owned[l].nth_index_in_set(0) : 0;
+    const unsigned int end = first + owned[l].n_elements();
+    std::vector<bool>  keep(fine.n_dofs());
     for (unsigned int i = 0; i < fine.n_dofs(); ++i)
-      keep[i] = l == 0 ?
-                  local[i] >= 0 && !system_constraints.is_constrained(i) :
-                  !levels.constraints[l].is_constrained(i);
+      {
+        const long row = l == 0 ? local[i] : long(i);
+        keep[i]        = row >= first && row < end &&
+                  !(l == 0 ? system_constraints : levels.constraints[l])
+                     .is_constrained(i);
+      }
     const std::vector<Row> rows =
       prolongation_rows<dim>(fine,
                              keep,
@@ -499,8 +512,6 @@ namespace Fidus
     for (unsigned int i = 0; i < rows.size(); ++i)
       if (!rows[i].empty())
         by_row[l == 0 ? local[i] : i] = &rows[i];
-    const unsigned int first =
-      owned[l].n_elements() > 0 ? owned[l].nth_index_in_set(0) : 0;
     std::vector<std::size_t>             start{0};
     std::vector<types::global_dof_index> columns;
     std::vector<double>                  values;
