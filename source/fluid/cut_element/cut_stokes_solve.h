@@ -123,7 +123,7 @@ namespace Fidus
       choose_solver();
       make_sparsity_pattern();
       // The pattern's scratch is freed in many small blocks.
-      MemoryUsage::release_free_memory();
+      release_free_memory_if_short();
       check_memory(true);
       setup_system();
       stage.dofs = lap();
@@ -226,6 +226,24 @@ namespace Fidus
     /// entries, which set its peak.
     void
     check_memory(const bool with_pattern) const;
+
+    /// A solve's expected peak on each rank, and the bytes per unit
+    /// (matrix entry or unknown) it is counted in (check_memory()).
+    struct MemoryNeed
+    {
+      double bytes    = 0.;
+      double per_unit = 0.;
+    };
+
+    /// The peak check_memory() expects: from the pattern's entries with
+    /// @p with_pattern, else from the unknowns.
+    MemoryNeed
+    memory_need(const bool with_pattern) const;
+
+    /// Hand the memory freed so far back to the system only when the
+    /// machine has less than twice what the solve needs (collective).
+    void
+    release_free_memory_if_short() const;
 
     /// Collect the faces that carry a ghost penalty, each once.
     void
