@@ -504,10 +504,9 @@ namespace Fidus
     else
       matrix.reinit(sparsity);
     // The iterative solver's pressure preconditioner takes the pressure
-    // mass matrix over the fluid, on the pressures' own pattern.
-    for (unsigned int k = 0; k < taylor_hood.n_dofs_per_cell(); ++k)
-      if (taylor_hood.system_to_component_index(k).first == dim)
-        pressure_shapes.push_back(k);
+    // mass matrix over the fluid, on the pressures' own pattern; in the
+    // order the volume kernel writes the cells' pressure mass in.
+    pressure_shapes = TaylorHoodLayout<dim>(taylor_hood).pressure;
     pressure_dof_indices.resize(pressure_shapes.size());
     pressure_mean.reinit(n_total);
     if (iterative)
