@@ -74,6 +74,18 @@ namespace Fidus
 
 
 
+  void
+  MemoryBudget::release_freed_memory_if_short(const double needed_bytes,
+                                              MPI_Comm     comm) const
+  {
+    double least = free_bytes();
+    MPI_Allreduce(MPI_IN_PLACE, &least, 1, MPI_DOUBLE, MPI_MIN, comm);
+    if (least < 2. * needed_bytes)
+      MemoryUsage::release_free_memory();
+  }
+
+
+
   std::string
   MemoryBudget::source() const
   {

@@ -1,8 +1,9 @@
-// product_transposed(), the matrix product of the cut element's cell and
-// face kernels, which WorkStream runs on several threads at once:
-//  - against a plain triple loop, for the shapes of the kernels (a 2D and a
-//    3D Taylor-Hood cell with 200 quadrature points, a 3D ghost-penalty
-//    face): within 1e-13 of the largest entry;
+// product_transposed(), the matrix product of the cut element's Nitsche
+// terms and ghost-penalty faces, which WorkStream runs on several threads
+// at once:
+//  - against a plain triple loop, for the shapes its callers give it (the
+//    Nitsche terms of a 2D and a 3D cut cell, the velocity and pressure
+//    parts of a 3D ghost-penalty face): within 1e-13 of the largest entry;
 //  - two threads computing the same products at the same time get, every
 //    time, the matrix that one thread gets alone, to the bit. deal.II's
 //    FullMatrix::mTmult fails this with Debian's serial OpenBLAS (its
@@ -59,11 +60,17 @@ main(int argc, char **argv)
     std::string  name;
     unsigned int rows, columns, repeats;
   };
-  // Rows: the shape functions (2D: 9 x 2 + 4, 3D: 27 x 3 + 8; a face:
-  // both cells'); columns: quadrature points x terms per point.
-  const std::vector<Shape> shapes = {{"2D cut cell", 22, 200 * 5, 4000},
-                                     {"3D cut cell", 89, 200 * 8, 60},
-                                     {"3D face", 178, 9 * 7, 400}};
+  // The Nitsche terms (cut_stokes_solve_assemble.cc): rows the Taylor-Hood
+  // functions (2D: 9 x 2 + 4, 3D: 27 x 3 + 8) and one particle's rigid
+  // modes (3 and 6), columns 2 dim per surface point (here 8 points in 2D,
+  // 24 in 3D). A 3D face: rows the two cells' scalar Q2 functions (27 + 27
+  // - 9 shared) with 2 columns per face point (9), and their pressures
+  // (8 + 8 - 4) with one.
+  const std::vector<Shape> shapes = {
+    {"2D Nitsche terms", 25, 8 * 4, 20000},
+    {"3D Nitsche terms", 95, 24 * 6, 1000},
+    {"3D face, velocity part", 45, 9 * 2, 20000},
+    {"3D face, pressure part", 12, 9, 50000}};
   for (const auto &shape : shapes)
     {
       const auto                 left  = filled(shape.rows, shape.columns, 0.1);
