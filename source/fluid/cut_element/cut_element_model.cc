@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 #include <fidus/contact/pair_search.h>
 #include <fidus/core/input_error.h>
+#include <fidus/core/memory_budget.h>
 #include <fidus/fluid/cut_element/cut_element_model.h>
 #include <fidus/fluid/cut_element/cut_stokes_inclusion.h>
 #include <fidus/lubrication/lubrication_correction.h>
@@ -37,26 +38,29 @@ namespace Fidus
         box_sides.push_back(std::abs(ratio - whole) <= 1e-9 * ratio ? whole :
                                                                       ratio);
       }
-    // On more than one rank the iterative solve splits the velocity block
-    // and its multigrid among the ranks, but every rank builds the whole
-    // mesh and holds the rest of the system: on one machine that is slower
-    // and dearer than one rank with the machine's cores as threads. Said
-    // once when 'auto' chose it (a solver set by hand is the user's call).
+    // On more than one rank the iterative solve splits the system, its
+    // multigrid and its iterations among the ranks; on one machine one rank
+    // with the machine's cores as threads splits the same work as well, and
+    // holds less (each rank keeps the whole mesh, a few per cent of its
+    // memory, and the libraries). Said once when 'auto' chose it and all
+    // ranks share one machine: across machines, ranks are how a run gets
+    // more memory (a solver set by hand is the user's call).
     const unsigned int ranks  = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
     const std::string &solver = prm.cut_element.linear_solver;
-    if (dim == 3 && ranks > 1 && (solver == "auto" || solver == "automatic"))
+    if (dim == 3 && ranks > 1 && (solver == "auto" || solver == "automatic") &&
+        ranks_on_this_machine(MPI_COMM_WORLD) == ranks)
       warnings.warn(
         "cut element: 3D on many ranks",
         "the cut element runs on " + std::to_string(ranks) +
-          " MPI ranks: its iterative solve splits the system, its "
-          "multigrid and its iterations among them, but every rank builds "
-          "the whole mesh, so on one machine one rank with the machine's "
-          "cores as threads is as fast or faster and holds less in all (the "
-          "paper's 3D pair 0.01 a apart on a 2-core machine: 12.7 s and "
-          "1.77 GB per rank on 2 ranks against 11.2 s and 2.19 GB on one, "
-          "per solve; doc/theory/cut_element.md, 'Solvers'): run fidus on one "
-          "rank, or set 'Fluid/Cut linear solver' by hand to keep the "
-          "ranks without this warning",
+          " MPI ranks of one machine: its iterative solve splits the "
+          "system, its multigrid and its iterations among them, but one "
+          "rank with the machine's cores as threads splits them as well, "
+          "as fast or faster, and holds less in all (the paper's 3D pair "
+          "0.01 a apart on a 2-core machine: 12.7 s and 1.77 GB per rank "
+          "on 2 ranks against 11.2 s and 2.19 GB on one, per solve; "
+          "doc/theory/cut_element_solvers.md): run fidus on one rank, or "
+          "set 'Fluid/Cut linear solver' by hand to keep the ranks without "
+          "this warning",
         0,
         ranks);
   }

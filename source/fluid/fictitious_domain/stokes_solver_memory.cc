@@ -44,7 +44,8 @@ namespace Fidus
 
   template <int dim>
   double
-  StokesSolver<dim>::memory_need(const types::global_dof_index n_owned) const
+  StokesSolver<dim>::memory_need(const types::global_dof_index n_owned,
+                                 const unsigned int            restart) const
   {
     // Bytes per owned unknown of the system, its preconditioner and the
     // solver's vectors, measured on the 3D bulk scene (573 spheres, levels
@@ -57,8 +58,7 @@ namespace Fidus
     const double per_unknown = matrix_free ? 1.8e3 : 12.5e3;
     return double(n_owned) *
            (per_unknown +
-            8. * (basis_vectors(
-                    std::min(settings.gmres_restart, smallest_restart)) +
+            8. * (basis_vectors(restart) +
                   acceleration_vectors(settings.uzawa_acceleration_depth)));
   }
 
@@ -68,9 +68,13 @@ namespace Fidus
   void
   StokesSolver<dim>::release_freed_memory_if_short() const
   {
+    // At the configured restart: memory kept counts as used in the
+    // budget, and must not make fit_restart() or basis_is_short() choose
+    // otherwise than they would have.
     const double needed =
       std::max(memory_need(owned_partitioning[0].n_elements() +
-                           owned_partitioning[1].n_elements()),
+                             owned_partitioning[1].n_elements(),
+                           settings.gmres_restart),
                double(MemoryUsage::peak_bytes()));
     memory_budget.release_freed_memory_if_short(needed, mpi_communicator);
   }
@@ -85,8 +89,9 @@ namespace Fidus
     const bool matrix_free =
       settings.geometric_multigrid && settings.matrix_free_velocity_block;
     const double per_unknown = matrix_free ? 1.8e3 : 12.5e3;
-    const double needed      = memory_need(n_owned);
-    const double free        = memory_budget.free_bytes();
+    const double needed =
+      memory_need(n_owned, std::min(settings.gmres_restart, smallest_restart));
+    const double free = memory_budget.free_bytes();
     const double short_by =
       Utilities::MPI::max(needed - free, mpi_communicator);
     if (!(short_by > 0.))
@@ -162,8 +167,10 @@ namespace Fidus
     StokesSolver<2>::check_memory_for_mesh(types::global_dof_index) const;
   template void
     StokesSolver<3>::check_memory_for_mesh(types::global_dof_index) const;
-  template double StokesSolver<2>::memory_need(types::global_dof_index) const;
-  template double StokesSolver<3>::memory_need(types::global_dof_index) const;
+  template double
+  StokesSolver<2>::memory_need(types::global_dof_index, unsigned int) const;
+  template double
+  StokesSolver<3>::memory_need(types::global_dof_index, unsigned int) const;
   template void
   StokesSolver<2>::release_freed_memory_if_short() const;
   template void

@@ -384,13 +384,15 @@ namespace Fidus
     /// (stokes_solver_memory.cc).
     void
     check_memory_for_mesh(types::global_dof_index n_owned) const;
-    /// The bytes check_memory_for_mesh() expects a rank with @p n_owned
-    /// owned unknowns to need (the lower end of what was measured).
+    /// The bytes a rank with @p n_owned owned unknowns is expected to need
+    /// (the lower end of what was measured) with FGMRES restarted every
+    /// @p restart iterations.
     double
-    memory_need(types::global_dof_index n_owned) const;
+    memory_need(types::global_dof_index n_owned, unsigned int restart) const;
     /// Hand the memory freed so far back to the system only when a rank
-    /// has less than twice what a step needs: the larger of
-    /// memory_need() and this rank's peak so far (collective).
+    /// has less than twice what a step needs: the larger of memory_need()
+    /// at the configured restart and this rank's peak so far
+    /// (collective).
     void
     release_freed_memory_if_short() const;
     /// Whether FGMRES's basis at the configured restart would not fit in
