@@ -1,5 +1,5 @@
-// MemoryBudget::release_freed_memory_if_short(), the rule by which both
-// fluids hand the memory a step has freed back to the operating system:
+// MemoryBudget::release_freed_memory_if_short(), the rule by which the cut
+// element hands the memory a solve has freed back to the operating system:
 // 200 MB in blocks of 1 KB (the size of a sparsity pattern's scratch) are
 // allocated and freed below a block that stays, so that the freed memory
 // stays resident in the process (glibc trims only the top of its heap by

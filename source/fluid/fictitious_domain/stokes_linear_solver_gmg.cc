@@ -83,9 +83,9 @@ namespace Fidus
       assembles_velocity_block() ? &s.system_matrix.block(0, 0) : nullptr,
       s.constraints);
     // The cut-cell blocks are summed as full matrices (tens of KB each,
-    // on the heap) and kept packed; the full ones, freed, stay resident
-    // under the FGMRES basis that follows unless handed back.
-    s.release_freed_memory_if_short();
+    // on the heap) and kept packed; the full ones, freed, would stay
+    // resident under the FGMRES basis that follows.
+    MemoryUsage::release_free_memory();
   }
 
 

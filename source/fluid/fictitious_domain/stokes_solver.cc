@@ -186,9 +186,8 @@ namespace Fidus
     };
     make_matrix(system_matrix, false);
     make_matrix(preconditioner_matrix, true);
-    // The sparsity patterns' scratch, freed, stays resident unless handed
-    // back; kept while there is room, the next step reuses it.
-    release_freed_memory_if_short();
+    // The sparsity patterns' scratch, freed, would stay resident.
+    MemoryUsage::release_free_memory();
 
     base_rhs.reinit(owned_partitioning,
                     relevant_partitioning,

@@ -43,9 +43,9 @@ namespace Fidus
 
 
   template <int dim>
-  double
-  StokesSolver<dim>::memory_need(const types::global_dof_index n_owned,
-                                 const unsigned int            restart) const
+  void
+  StokesSolver<dim>::check_memory_for_mesh(
+    const types::global_dof_index n_owned) const
   {
     // Bytes per owned unknown of the system, its preconditioner and the
     // solver's vectors, measured on the 3D bulk scene (573 spheres, levels
@@ -56,41 +56,11 @@ namespace Fidus
     const bool matrix_free =
       settings.geometric_multigrid && settings.matrix_free_velocity_block;
     const double per_unknown = matrix_free ? 1.8e3 : 12.5e3;
-    return double(n_owned) *
-           (per_unknown +
-            8. * (basis_vectors(restart) +
-                  acceleration_vectors(settings.uzawa_acceleration_depth)));
-  }
-
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::release_freed_memory_if_short() const
-  {
-    // At the configured restart: memory kept counts as used in the
-    // budget, and must not make fit_restart() or basis_is_short() choose
-    // otherwise than they would have.
     const double needed =
-      std::max(memory_need(owned_partitioning[0].n_elements() +
-                             owned_partitioning[1].n_elements(),
-                           settings.gmres_restart),
-               double(MemoryUsage::peak_bytes()));
-    memory_budget.release_freed_memory_if_short(needed, mpi_communicator);
-  }
-
-
-
-  template <int dim>
-  void
-  StokesSolver<dim>::check_memory_for_mesh(
-    const types::global_dof_index n_owned) const
-  {
-    const bool matrix_free =
-      settings.geometric_multigrid && settings.matrix_free_velocity_block;
-    const double per_unknown = matrix_free ? 1.8e3 : 12.5e3;
-    const double needed =
-      memory_need(n_owned, std::min(settings.gmres_restart, smallest_restart));
+      double(n_owned) *
+      (per_unknown +
+       8. * (basis_vectors(std::min(settings.gmres_restart, smallest_restart)) +
+             acceleration_vectors(settings.uzawa_acceleration_depth)));
     const double free = memory_budget.free_bytes();
     const double short_by =
       Utilities::MPI::max(needed - free, mpi_communicator);
@@ -167,14 +137,6 @@ namespace Fidus
     StokesSolver<2>::check_memory_for_mesh(types::global_dof_index) const;
   template void
     StokesSolver<3>::check_memory_for_mesh(types::global_dof_index) const;
-  template double
-  StokesSolver<2>::memory_need(types::global_dof_index, unsigned int) const;
-  template double
-  StokesSolver<3>::memory_need(types::global_dof_index, unsigned int) const;
-  template void
-  StokesSolver<2>::release_freed_memory_if_short() const;
-  template void
-  StokesSolver<3>::release_freed_memory_if_short() const;
   template bool
   StokesSolver<2>::basis_is_short() const;
   template bool

@@ -384,17 +384,6 @@ namespace Fidus
     /// (stokes_solver_memory.cc).
     void
     check_memory_for_mesh(types::global_dof_index n_owned) const;
-    /// The bytes a rank with @p n_owned owned unknowns is expected to need
-    /// (the lower end of what was measured) with FGMRES restarted every
-    /// @p restart iterations.
-    double
-    memory_need(types::global_dof_index n_owned, unsigned int restart) const;
-    /// Hand the memory freed so far back to the system only when a rank
-    /// has less than twice what a step needs: the larger of memory_need()
-    /// at the configured restart and this rank's peak so far
-    /// (collective).
-    void
-    release_freed_memory_if_short() const;
     /// Whether FGMRES's basis at the configured restart would not fit in
     /// what some rank has left (then assemble_system() frees B^T, and
     /// B^T is applied as the transpose of B: slower, by about 6 % per
